@@ -1,0 +1,117 @@
+#include "io/output.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+namespace sluice {
+
+const char* StatsCsv::header() {
+  return "step,time,dt,iterations,avg_error_percent,max_error_percent,density_error_percent,max_cfl,"
+         "fluid_particles,frame,ms_neighbors,ms_nonpressure,ms_pressure,ms_integrate,ms_total";
+}
+
+StatsCsv::StatsCsv(const std::string& path) : path_(path), out_(path) {
+  if (!out_) throw OutputError(path + ": cannot open for writing");
+  out_ << header() << '\n';
+}
+
+void StatsCsv::write(const StepStats& s) {
+  char line[512];
+  std::snprintf(line, sizeof line, "%ld,%.9g,%.6g,%d,%.6g,%.6g,%.6g,%.6g,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f\n", s.step,
+                s.time, s.dt, s.iterations, s.avg_error_percent, s.max_error_percent, s.density_error_percent,
+                s.max_cfl, s.fluid_particles, s.frame, s.ms_neighbors, s.ms_nonpressure, s.ms_pressure,
+                s.ms_integrate, s.ms_total);
+  out_ << line;
+  if (!out_) throw OutputError(path_ + ": write failed");
+}
+
+void write_file_atomic(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw OutputError(path + ": cannot open for writing");
+    out << text;
+    out.flush();
+    if (!out) throw OutputError(path + ": write failed (disk full?)");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw OutputError(path + ": cannot rename from " + tmp + ": " + ec.message());
+}
+
+namespace {
+// Indices of fluid particles sorted by their initial id, so exports keep one order.
+std::vector<Index> by_id(const FluidParticles& f) {
+  std::vector<Index> order(f.id.size());
+  for (Index k = 0; k < f.size(); ++k) order[f.id[k]] = k;
+  return order;
+}
+}  // namespace
+
+std::string particles_csv(const FluidParticles& f) {
+  std::string s = "id,x,y,vx,vy,pressure,density\n";
+  s.reserve(s.size() + static_cast<size_t>(f.size()) * 96);
+  char line[256];
+  for (Index k : by_id(f)) {
+    std::snprintf(line, sizeof line, "%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", f.id[k], f.x[k].x(), f.x[k].y(),
+                  f.v[k].x(), f.v[k].y(), f.p[k], f.rho[k]);
+    s += line;
+  }
+  return s;
+}
+
+std::string particles_vtk(const FluidParticles& f, double time) {
+  const Index n = f.size();
+  const std::vector<Index> order = by_id(f);
+  std::ostringstream os;
+  os.precision(9);
+  os << "# vtk DataFile Version 3.0\nsluice fluid particles t=" << time << "\nASCII\nDATASET POLYDATA\n";
+  os << "POINTS " << n << " double\n";
+  for (Index k : order) os << f.x[k].x() << ' ' << f.x[k].y() << " 0\n";
+  os << "VERTICES " << n << ' ' << 2 * n << '\n';
+  for (Index i = 0; i < n; ++i) os << "1 " << i << '\n';
+  os << "POINT_DATA " << n << "\nVECTORS velocity double\n";
+  for (Index k : order) os << f.v[k].x() << ' ' << f.v[k].y() << " 0\n";
+  os << "SCALARS pressure double 1\nLOOKUP_TABLE default\n";
+  for (Index k : order) os << f.p[k] << '\n';
+  os << "SCALARS density double 1\nLOOKUP_TABLE default\n";
+  for (Index k : order) os << f.rho[k] << '\n';
+  os << "SCALARS id int 1\nLOOKUP_TABLE default\n";
+  for (Index k : order) os << f.id[k] << '\n';
+  return os.str();
+}
+
+void RunTotals::add(const StepStats& s) {
+  ++steps;
+  simulated_time = s.time;
+  sum_iterations += s.iterations;
+  sum_avg_error += s.avg_error_percent;
+  sum_density_error += s.density_error_percent;
+  max_error = std::max(max_error, s.max_error_percent);
+  const double ms[5] = {s.ms_neighbors, s.ms_nonpressure, s.ms_pressure, s.ms_integrate, s.ms_total};
+  for (int k = 0; k < 5; ++k) sum_ms[k] += ms[k];
+}
+
+nlohmann::json RunTotals::to_json(long fluid_particles) const {
+  const double ns = steps > 0 ? static_cast<double>(steps) : 1.0;
+  const double particle_steps = ns * static_cast<double>(std::max(fluid_particles, 1L));
+  return {
+      {"steps", steps},
+      {"simulated_time", simulated_time},
+      {"wall_seconds", wall_seconds},
+      {"average_iterations", sum_iterations / ns},
+      {"average_error_percent", sum_avg_error / ns},
+      {"max_error_percent", max_error},
+      {"average_density_error_percent", sum_density_error / ns},
+      {"us_per_particle_step", 1000.0 * sum_ms[4] / particle_steps},
+      {"ms_per_step",
+       {{"neighbors", sum_ms[0] / ns},
+        {"nonpressure", sum_ms[1] / ns},
+        {"pressure", sum_ms[2] / ns},
+        {"integrate", sum_ms[3] / ns},
+        {"total", sum_ms[4] / ns}}},
+  };
+}
+
+}  // namespace sluice

@@ -1,0 +1,56 @@
+#pragma once
+// Frame sinks of a simulation run that write files: per-step statistics (CSV), the
+// run summary (JSON) and particle exports (CSV, VTK). Files that are written at once
+// go to a temporary name first and are renamed when complete.
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "sim/particles.h"
+#include "sim/stats.h"
+
+namespace sluice {
+
+// Thrown when an output file cannot be written; the message names the path.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// stats.csv: one row per step; columns documented in the README.
+class StatsCsv {
+ public:
+  explicit StatsCsv(const std::string& path);
+  void write(const StepStats& s);
+  void flush() { out_.flush(); }
+  static const char* header();
+
+ private:
+  std::string path_;
+  std::ofstream out_;
+};
+
+// Writes `text` to `path` through `path.tmp` and a rename.
+void write_file_atomic(const std::string& path, const std::string& text);
+
+// One row per fluid particle in the scene's initial order: id,x,y,vx,vy,pressure,density.
+std::string particles_csv(const FluidParticles& f);
+// The same as a legacy ASCII VTK PolyData file (points with vertex cells and point data).
+std::string particles_vtk(const FluidParticles& f, double time);
+
+// Running totals of a run for summary.json.
+struct RunTotals {
+  long steps = 0;
+  double simulated_time = 0;
+  double wall_seconds = 0;
+  double sum_iterations = 0;
+  double sum_avg_error = 0;
+  double max_error = 0;
+  double sum_density_error = 0;
+  double sum_ms[5] = {0, 0, 0, 0, 0};  // neighbours, non-pressure, pressure, integration, total
+
+  void add(const StepStats& s);
+  nlohmann::json to_json(long fluid_particles) const;
+};
+
+}  // namespace sluice

@@ -1,0 +1,685 @@
+// Scene files: JSON reading, overrides, validation with path-precise messages, and the
+// assembly of particles from the shapes (shapes.cpp). The format is documented in
+// docs/scene_format.md; keep the two in sync.
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <utility>
+
+#include "scene/shapes.h"
+
+namespace sluice {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kMaxParticles = 2e7;  // guard against a typo in the spacing eating all memory
+
+std::string num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.15g", v);
+  return buf;
+}
+
+std::string show(const json& v) {
+  std::string s = v.dump();
+  return s.size() > 60 ? s.substr(0, 57) + "..." : s;
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& s : items) out += (out.empty() ? "" : ", ") + s;
+  return out;
+}
+
+// JSON pointer escaping of one key (RFC 6901).
+std::string escape_key(const std::string& key) {
+  std::string out;
+  for (char c : key) out += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
+  return out;
+}
+
+// An allowed interval of a number, with its description for messages.
+struct Range {
+  double lo = -kInf, hi = kInf;
+  bool lo_open = false, hi_open = false;
+  std::string unit;
+
+  static Range positive(std::string unit = "") { return {0, kInf, true, false, std::move(unit)}; }
+  static Range at_least(double lo, std::string unit = "") { return {lo, kInf, false, false, std::move(unit)}; }
+  static Range open_closed(double lo, double hi, std::string unit = "") { return {lo, hi, true, false, std::move(unit)}; }
+
+  bool contains(double v) const {
+    return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  }
+  std::string describe() const {
+    std::string s;
+    if (hi == kInf) s = std::string("must be ") + (lo_open ? "> " : ">= ") + num(lo);
+    else s = "must be in " + std::string(lo_open ? "(" : "[") + num(lo) + ", " + num(hi) + (hi_open ? ")" : "]");
+    return unit.empty() ? s : s + " " + unit;
+  }
+};
+
+// The file name for messages and the checks of single JSON values.
+struct Context {
+  std::string file;
+
+  [[noreturn]] void fail(const std::string& path, const std::string& problem) const {
+    throw SceneError(file + ": " + (path.empty() ? "/" : path) + ": " + problem);
+  }
+
+  double number(const json& v, const std::string& path, const Range& r) const {
+    if (!v.is_number()) fail(path, "expected a number, got " + show(v));
+    const double x = v.get<double>();
+    if (!r.contains(x)) fail(path, "value " + show(v) + " is out of range; " + r.describe());
+    return x;
+  }
+  int integer(const json& v, const std::string& path, int lo, int hi) const {
+    if (!v.is_number_integer()) fail(path, "expected an integer, got " + show(v));
+    const long double x = v.is_number_unsigned() ? static_cast<long double>(v.get<unsigned long long>())
+                                                 : static_cast<long double>(v.get<long long>());
+    if (x < lo || x > hi)
+      fail(path, "value " + show(v) + " is out of range; must be an integer in [" + std::to_string(lo) + ", " +
+                     std::to_string(hi) + "]");
+    return static_cast<int>(x);
+  }
+  bool boolean(const json& v, const std::string& path) const {
+    if (!v.is_boolean()) fail(path, "expected true or false, got " + show(v));
+    return v.get<bool>();
+  }
+  std::string string(const json& v, const std::string& path) const {
+    if (!v.is_string() || v.get<std::string>().empty()) fail(path, "expected a non-empty string, got " + show(v));
+    return v.get<std::string>();
+  }
+  std::string choice(const json& v, const std::string& path, const std::vector<std::string>& allowed) const {
+    if (!v.is_string() || std::find(allowed.begin(), allowed.end(), v.get<std::string>()) == allowed.end())
+      fail(path, "invalid value " + show(v) + "; must be one of: " + join(allowed));
+    return v.get<std::string>();
+  }
+  Vec2 vec2(const json& v, const std::string& path) const {
+    if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number() ||
+        !std::isfinite(v[0].get<double>()) || !std::isfinite(v[1].get<double>()))
+      fail(path, "expected an array of 2 numbers, got " + show(v));
+    return {v[0].get<double>(), v[1].get<double>()};
+  }
+  std::vector<Vec2> points(const json& v, const std::string& path, std::size_t min_count) const {
+    if (!v.is_array() || v.size() < min_count)
+      fail(path, "expected an array of at least " + std::to_string(min_count) + " points [x, y], got " + show(v));
+    std::vector<Vec2> out;
+    for (std::size_t i = 0; i < v.size(); ++i) out.push_back(vec2(v[i], path + "/" + std::to_string(i)));
+    return out;
+  }
+};
+
+// Reads the keys of one JSON object: every read names an allowed key and records the
+// value (or its default) in resolved(); finish() rejects the keys nobody asked for.
+class Reader {
+ public:
+  Reader(const Context& ctx, const json* j, std::string path) : ctx_(ctx), path_(std::move(path)) {
+    if (j && !j->is_object()) ctx.fail(path_, "expected an object, got " + show(*j));
+    if (j) j_ = *j;
+  }
+
+  std::string at(const std::string& key) const { return path_ + "/" + escape_key(key); }
+  const std::string& path() const { return path_; }
+  json& resolved() { return out_; }
+
+  const json* find(const std::string& key) {
+    allowed_.push_back(key);
+    const auto it = j_.find(key);
+    return it == j_.end() ? nullptr : &*it;
+  }
+  const json& require(const std::string& key, const std::string& what) {
+    if (const json* v = find(key)) return *v;
+    ctx_.fail(at(key), "missing required key; " + what);
+  }
+
+  double number(const std::string& key, double def, const Range& r) {
+    const json* v = find(key);
+    const double x = v ? ctx_.number(*v, at(key), r) : def;
+    out_[key] = x;
+    return x;
+  }
+  double number(const std::string& key, const Range& r) {
+    const double x = ctx_.number(require(key, "a number that " + r.describe()), at(key), r);
+    out_[key] = x;
+    return x;
+  }
+  int integer(const std::string& key, int def, int lo, int hi) {
+    const json* v = find(key);
+    const int x = v ? ctx_.integer(*v, at(key), lo, hi) : def;
+    out_[key] = x;
+    return x;
+  }
+  bool boolean(const std::string& key, bool def) {
+    const json* v = find(key);
+    const bool x = v ? ctx_.boolean(*v, at(key)) : def;
+    out_[key] = x;
+    return x;
+  }
+  std::string string(const std::string& key, const std::string& def) {
+    const json* v = find(key);
+    std::string x = v ? ctx_.string(*v, at(key)) : def;
+    out_[key] = x;
+    return x;
+  }
+  Vec2 vec2(const std::string& key, const Vec2& def) {
+    const json* v = find(key);
+    const Vec2 x = v ? ctx_.vec2(*v, at(key)) : def;
+    out_[key] = {x.x(), x.y()};
+    return x;
+  }
+  Vec2 vec2(const std::string& key) {
+    const Vec2 x = ctx_.vec2(require(key, "an array of 2 numbers [x, y]"), at(key));
+    out_[key] = {x.x(), x.y()};
+    return x;
+  }
+  std::vector<Vec2> points(const std::string& key, std::size_t min_count) {
+    const json& v = require(key, "an array of at least " + std::to_string(min_count) + " points [x, y]");
+    auto pts = ctx_.points(v, at(key), min_count);
+    out_[key] = v;
+    return pts;
+  }
+  // A string from a fixed list; def == nullptr makes the key required.
+  std::string choice(const std::string& key, const std::vector<std::string>& allowed, const char* def) {
+    const json* v = def ? find(key) : &require(key, "must be one of: " + join(allowed));
+    std::string x = v ? ctx_.choice(*v, at(key), allowed) : def;
+    out_[key] = x;
+    return x;
+  }
+  template <class E>
+  E enumeration(const std::string& key, E def, const std::vector<std::pair<std::string, E>>& table) {
+    std::vector<std::string> names;
+    std::string def_name;
+    for (const auto& [name, e] : table) {
+      names.push_back(name);
+      if (e == def) def_name = name;
+    }
+    const std::string x = choice(key, names, def_name.c_str());
+    for (const auto& [name, e] : table)
+      if (name == x) return e;
+    return def;
+  }
+
+  void finish() const {
+    for (const auto& item : j_.items())
+      if (std::find(allowed_.begin(), allowed_.end(), item.key()) == allowed_.end())
+        ctx_.fail(at(item.key()), "unknown key; allowed keys: " + join(allowed_));
+  }
+
+ private:
+  const Context& ctx_;
+  json j_ = json::object();
+  std::string path_;
+  std::vector<std::string> allowed_;
+  json out_ = json::object();
+};
+
+// --- parsing the text -----------------------------------------------------------------------
+
+json parse_json(const std::string& text, const Context& ctx) {
+  // nlohmann keeps the last of duplicate keys; the callback turns that into an error.
+  struct Frame {
+    bool array = false;
+    long index = 0;
+    std::string path, key;
+    std::set<std::string> keys;
+  };
+  std::vector<Frame> frames;
+  std::string duplicate;
+  auto callback = [&](int, json::parse_event_t event, json& parsed) {
+    auto child_path = [&]() {
+      if (frames.empty()) return std::string();
+      const Frame& f = frames.back();
+      return f.path + "/" + (f.array ? std::to_string(f.index) : escape_key(f.key));
+    };
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        frames.push_back({event == json::parse_event_t::array_start, 0, child_path(), "", {}});
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        frames.pop_back();
+        if (!frames.empty() && frames.back().array) ++frames.back().index;
+        break;
+      case json::parse_event_t::key:
+        frames.back().key = parsed.get<std::string>();
+        if (!frames.back().keys.insert(frames.back().key).second && duplicate.empty()) duplicate = child_path();
+        break;
+      case json::parse_event_t::value:
+        if (!frames.empty() && frames.back().array) ++frames.back().index;
+        break;
+    }
+    return true;
+  };
+  json j;
+  try {
+    j = json::parse(text, callback);
+  } catch (const json::parse_error& e) {
+    // e.byte counts the characters read; the last one read is where the error is.
+    std::size_t pos = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
+    // An unexpected string is reported at its closing quote; point at its opening quote.
+    if (pos < text.size() && text[pos] == '"' && std::string(e.what()).find("unexpected string literal") != std::string::npos)
+      for (std::size_t q = pos; q-- > 0;)
+        if (text[q] == '"') {
+          std::size_t slashes = 0;
+          while (q > slashes && text[q - 1 - slashes] == '\\') ++slashes;
+          if (slashes % 2 == 0) {
+            pos = q;
+            break;
+          }
+        }
+    const std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
+    const std::size_t nl = pos == 0 ? std::string::npos : text.rfind('\n', pos - 1);
+    const std::size_t column = nl == std::string::npos ? pos + 1 : pos - nl;
+    std::string detail = e.what();
+    std::size_t p = detail.find("column ");
+    p = p == std::string::npos ? detail.find("] ") : detail.find(": ", p);
+    if (p != std::string::npos) detail = detail.substr(p + 2);
+    throw SceneError(ctx.file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": JSON parse error: " + detail);
+  } catch (const json::exception& e) {
+    throw SceneError(ctx.file + ": JSON parse error: " + e.what());
+  }
+  if (!duplicate.empty()) ctx.fail(duplicate, "duplicate key; each key may appear only once");
+  return j;
+}
+
+// --- overrides ----------------------------------------------------------------------------
+
+void apply_override(json& root, const std::string& text) {
+  auto fail = [&](const std::string& problem) -> void { throw SceneError("--set " + text + ": " + problem); };
+  const std::size_t eq = text.find('=');
+  if (eq == std::string::npos) fail("expected path=value, e.g. solver.tolerance=0.05 or /solver/type=wcsph");
+  const std::string path = text.substr(0, eq), value_text = text.substr(eq + 1);
+
+  std::vector<std::string> parts;
+  if (path.empty() || path == "/") fail("empty path; expected e.g. solver.tolerance or /solver/tolerance");
+  if (path[0] == '/') {
+    std::stringstream ss(path.substr(1));
+    for (std::string part; std::getline(ss, part, '/');) {
+      std::string key;
+      for (std::size_t i = 0; i < part.size(); ++i)
+        if (part[i] == '~' && i + 1 < part.size() && (part[i + 1] == '0' || part[i + 1] == '1')) key += part[++i] == '0' ? '~' : '/';
+        else key += part[i];
+      parts.push_back(key);
+    }
+    if (path.back() == '/') parts.push_back("");
+  } else {
+    std::stringstream ss(path);
+    for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
+    if (path.back() == '.') parts.push_back("");
+  }
+  for (const auto& p : parts)
+    if (p.empty()) fail("empty path component; expected e.g. solver.tolerance or /solver/tolerance");
+
+  json value = json::parse(value_text, nullptr, /*allow_exceptions=*/false);
+  if (value.is_discarded()) value = value_text;  // not JSON: a plain string such as wcsph
+
+  json* cur = &root;
+  std::string walked;
+  for (const auto& part : parts) {
+    if (cur->is_null()) *cur = json::object();
+    if (cur->is_object()) {
+      cur = &(*cur)[part];
+    } else if (cur->is_array()) {
+      const bool digits = std::all_of(part.begin(), part.end(), [](char c) { return c >= '0' && c <= '9'; });
+      if (!digits || part.size() > 9 || std::stoul(part) > cur->size())
+        fail("\"" + part + "\" is not an index of the array at " + (walked.empty() ? "/" : walked) + " (size " +
+             std::to_string(cur->size()) + "; the index equal to the size appends)");
+      cur = &(*cur)[std::stoul(part)];  // index == size appends a null, replaced below
+    } else {
+      fail("the path goes through " + (walked.empty() ? "/" : walked) + ", which is " + show(*cur) +
+           ", not an object or array");
+    }
+    walked += "/" + escape_key(part);
+  }
+  *cur = std::move(value);
+}
+
+// --- sections -----------------------------------------------------------------------------
+
+SolverSettings read_solver(Reader& r, const Context& ctx) {
+  SolverSettings s;
+  s.type = r.enumeration("type", s.type, {{"iisph", SolverType::IISPH}, {"wcsph", SolverType::WCSPH}});
+  s.rest_density = r.number("rest_density", s.rest_density, Range::positive("[kg/m^2]"));
+  s.gravity = r.vec2("gravity", s.gravity);
+  s.viscosity = r.number("viscosity", s.viscosity, Range::at_least(0, "[m^2/s]"));
+  s.tolerance_percent = r.number("tolerance", s.tolerance_percent, Range::positive("(percent)"));
+  s.omega = r.number("omega", s.omega, Range::open_closed(0, 1));
+  s.min_iterations = r.integer("min_iterations", s.min_iterations, 1, 10000);
+  s.max_iterations = r.integer("max_iterations", s.max_iterations, 1, 10000);
+  if (s.min_iterations > s.max_iterations)
+    ctx.fail(r.at("min_iterations"), "min_iterations " + std::to_string(s.min_iterations) + " is larger than max_iterations " +
+                                         std::to_string(s.max_iterations) + "; need 1 <= min_iterations <= max_iterations <= 10000");
+  s.pressure_init = r.enumeration("pressure_init", s.pressure_init,
+                                  {{"warm", PressureInit::WarmStart}, {"thesis", PressureInit::Thesis}});
+  s.stiffness = r.number("stiffness", s.stiffness, Range::positive("[Pa*m]"));
+  s.boundary_pressure = r.enumeration("boundary_pressure", s.boundary_pressure,
+                                      {{"extrapolation", BoundaryPressure::Extrapolation},
+                                       {"mirroring", BoundaryPressure::Mirroring},
+                                       {"zero", BoundaryPressure::Zero}});
+  s.gamma1 = r.number("gamma1", s.gamma1, Range::positive());
+  s.gamma2 = r.number("gamma2", s.gamma2, Range::at_least(0));
+  s.gamma3 = r.number("gamma3", s.gamma3, Range::at_least(0));
+  s.boundary_diagonal = r.boolean("boundary_diagonal", s.boundary_diagonal);
+  r.finish();
+  return s;
+}
+
+TimeSettings read_time(Reader& r, const Context& ctx) {
+  TimeSettings t;
+  t.duration = r.number("duration", t.duration, Range::positive("[s]"));
+  t.fps = r.number("fps", t.fps, Range::positive("[frames/s]"));
+  const json* dt = r.find("dt");
+  const json* cfl = r.find("cfl");
+  const bool fixed = dt && !dt->is_null(), has_cfl = cfl && !cfl->is_null();
+  if (fixed && has_cfl)
+    ctx.fail(r.path(), "both dt and cfl are given; remove \"cfl\" for a fixed time step, or \"dt\" for the adaptive CFL step (an override can remove a key with null, e.g. time.dt=null)");
+  if (fixed) t.dt = ctx.number(*dt, r.at("dt"), Range::positive("[s]"));
+  if (has_cfl) t.cfl = ctx.number(*cfl, r.at("cfl"), Range::open_closed(0, 2));
+  r.resolved()["dt"] = fixed ? json(t.dt) : json(nullptr);
+  r.resolved()["cfl"] = fixed ? json(nullptr) : json(t.cfl);
+  t.dt_max = r.number("dt_max", t.dt_max, Range::positive("[s]"));
+  t.dt_min = r.number("dt_min", t.dt_min, Range::positive("[s]"));
+  if (t.dt_min > t.dt_max)
+    ctx.fail(r.at("dt_min"), "dt_min " + num(t.dt_min) + " is larger than dt_max " + num(t.dt_max) + "; need 0 < dt_min <= dt_max");
+  r.finish();
+  return t;
+}
+
+StabilityLimits read_stability(Reader& r) {
+  StabilityLimits s;
+  s.max_error_percent = r.number("max_error_percent", s.max_error_percent, Range::positive("(percent)"));
+  s.bounds_margin = r.number("bounds_margin", s.bounds_margin, Range::positive("(scene sizes)"));
+  r.finish();
+  return s;
+}
+
+OutputSettings read_output(Reader& r, const Context& ctx, const std::string& name) {
+  OutputSettings o;
+  o.directory = r.string("directory", "renders/" + name);
+  if (const json* e = r.find("export")) {
+    if (!e->is_array()) ctx.fail(r.at("export"), "expected an array of formats, got " + show(*e) + "; allowed formats: csv, vtk");
+    for (std::size_t i = 0; i < e->size(); ++i) {
+      const std::string path = r.at("export") + "/" + std::to_string(i);
+      std::string f = ctx.choice((*e)[i], path, {"csv", "vtk"});
+      if (std::find(o.export_formats.begin(), o.export_formats.end(), f) != o.export_formats.end())
+        ctx.fail(path, "duplicate format \"" + f + "\"; list each of csv, vtk at most once");
+      o.export_formats.push_back(f);
+    }
+  }
+  r.resolved()["export"] = o.export_formats;
+  r.finish();
+  return o;
+}
+
+shapes::FluidShape read_fluid_block(Reader& r, const Context& ctx) {
+  shapes::FluidShape f;
+  const std::string shape = r.choice("shape", {"rectangle", "ellipse", "polygon"}, nullptr);
+  if (shape == "rectangle") {
+    f.kind = shapes::FluidShape::Kind::Rectangle;
+    f.min = r.vec2("min");
+    f.max = r.vec2("max");
+    if (f.max.x() < f.min.x() || f.max.y() < f.min.y())
+      ctx.fail(r.at("max"), "max [" + num(f.max.x()) + ", " + num(f.max.y()) + "] is below min [" + num(f.min.x()) + ", " +
+                                num(f.min.y()) + "]; need min <= max in x and y");
+  } else if (shape == "ellipse") {
+    f.kind = shapes::FluidShape::Kind::Ellipse;
+    f.center = r.vec2("center");
+    f.radii = r.vec2("radii");
+    if (f.radii.minCoeff() < 0) ctx.fail(r.at("radii"), "radii must be >= 0 [m], got " + show(r.resolved()["radii"]));
+  } else {
+    f.kind = shapes::FluidShape::Kind::Polygon;
+    f.points = r.points("points", 3);
+    if (const int seg = shapes::self_intersection(f.points, true); seg >= 0)
+      ctx.fail(r.at("points"), "the polygon intersects itself (edge " + std::to_string(seg) +
+                                   " crosses another edge); the points must form a simple polygon");
+  }
+  f.velocity = r.vec2("velocity", Vec2::Zero());
+  r.finish();
+  return f;
+}
+
+// Per-segment spacing: one number for all, or an array with one entry per segment.
+std::vector<double> read_segment_spacing(Reader& r, const Context& ctx, std::size_t segments, double def,
+                                         bool allow_array, const std::string& order) {
+  const json* v = r.find("spacing");
+  if (!v) {
+    r.resolved()["spacing"] = def;
+    return std::vector<double>(segments, def);
+  }
+  r.resolved()["spacing"] = *v;
+  const Range range = Range::positive("[m]");
+  if (v->is_array() && allow_array) {
+    if (v->size() != segments)
+      ctx.fail(r.at("spacing"), "expected " + std::to_string(segments) + " spacings (one per segment" + order + "), got " +
+                                    std::to_string(v->size()));
+    std::vector<double> out;
+    for (std::size_t i = 0; i < segments; ++i)
+      out.push_back(ctx.number((*v)[i], r.at("spacing") + "/" + std::to_string(i), range));
+    return out;
+  }
+  if (!v->is_number())
+    ctx.fail(r.at("spacing"), std::string("expected a number") + (allow_array ? " or an array of numbers (one per segment)" : "") +
+                                  ", got " + show(*v));
+  return std::vector<double>(segments, ctx.number(*v, r.at("spacing"), range));
+}
+
+shapes::BoundaryShape read_boundary(Reader& r, const Context& ctx, std::size_t index, double h, std::string& name,
+                                    std::string& shape) {
+  shapes::BoundaryShape b;
+  shape = r.choice("shape", {"box", "polyline", "polygon", "circle", "ellipse"}, nullptr);
+  name = r.string("name", shape + std::to_string(index));
+  bool fluid_inside = false;
+  auto side = [&](std::vector<std::string> allowed, const char* def) { return r.choice("fluid_side", allowed, def); };
+
+  if (shape == "box") {
+    const Vec2 lo = r.vec2("min"), hi = r.vec2("max");
+    if (!(hi.x() > lo.x() && hi.y() > lo.y()))
+      ctx.fail(r.at("max"), "max [" + num(hi.x()) + ", " + num(hi.y()) + "] must be above min [" + num(lo.x()) + ", " +
+                                num(lo.y()) + "] in x and y");
+    const bool lid = r.boolean("lid", false);
+    b.kind = shapes::BoundaryShape::Kind::Box;
+    b.min = lo;
+    b.max = hi;
+    b.lid = lid;
+    // spacing entries: bottom, right, top, left (top unused without a lid)
+    const auto s = read_segment_spacing(r, ctx, 4, h, true, ": bottom, right, top, left");
+    if (lid) {  // counter-clockwise loop from min: bottom, right, top, left
+      b.points = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
+      b.segment_spacing = s;
+      b.closed = true;
+    } else {  // open cup: left wall down, bottom, right wall up
+      b.points = {{lo.x(), hi.y()}, lo, {hi.x(), lo.y()}, hi};
+      b.segment_spacing = {s[3], s[0], s[1]};
+    }
+    b.fluid_left = side({"inside", "outside"}, "inside") == "inside";  // inside is on the left of a CCW walk
+  } else if (shape == "polyline" || shape == "polygon") {
+    const bool polygon = shape == "polygon";
+    b.points = r.points("points", polygon ? 3 : 2);
+    b.closed = polygon ? true : r.boolean("closed", false);
+    const std::size_t segs = b.closed ? b.points.size() : b.points.size() - 1;
+    for (std::size_t i = 0; i < segs; ++i)
+      if ((b.points[(i + 1) % b.points.size()] - b.points[i]).norm() == 0)
+        ctx.fail(r.at("points") + "/" + std::to_string((i + 1) % b.points.size()),
+                 "repeats the previous point; segments must have a length > 0");
+    if (const int seg = shapes::self_intersection(b.points, b.closed); seg >= 0)
+      ctx.fail(r.at("points"), "segment " + std::to_string(seg) + " crosses another segment; the " + shape + " must not intersect itself");
+    if (polygon && shapes::signed_area(b.points) == 0) ctx.fail(r.at("points"), "the polygon has zero area");
+    b.segment_spacing = read_segment_spacing(r, ctx, segs, h, true, "");
+    if (polygon) {
+      fluid_inside = side({"inside", "outside"}, "outside") == "inside";
+      b.fluid_left = fluid_inside == (shapes::signed_area(b.points) > 0);
+    } else {
+      b.fluid_left = side({"left", "right"}, "left") == "left";
+    }
+  } else {  // circle, ellipse
+    b.kind = shapes::BoundaryShape::Kind::Ellipse;
+    b.center = r.vec2("center");
+    if (shape == "circle") {
+      const double radius = r.number("radius", Range::positive("[m]"));
+      b.radii = {radius, radius};
+    } else {
+      b.radii = r.vec2("radii");
+      if (b.radii.minCoeff() <= 0) ctx.fail(r.at("radii"), "radii must be > 0 [m], got " + show(r.resolved()["radii"]));
+    }
+    b.spacing = read_segment_spacing(r, ctx, 1, h, false, "")[0];
+    b.fluid_inside = side({"inside", "outside"}, "outside") == "inside";
+  }
+  b.layers = r.integer("layers", 2, 1, 1000);
+  b.layer_spacing = r.number("layer_spacing", h, Range::positive("[m]"));
+  b.surface_offset = r.number("surface_offset", 0.5, Range::at_least(0, "(in layer spacings)"));
+  r.finish();
+
+  // Guard against absurd sample counts (e.g. a spacing typo).
+  double length = 0;
+  if (b.kind == shapes::BoundaryShape::Kind::Ellipse) {
+    length = shapes::ellipse_perimeter(b.radii.x(), b.radii.y()) / b.spacing;
+  } else {
+    for (std::size_t i = 0; i < b.segment_spacing.size(); ++i)
+      length += (b.points[(i + 1) % b.points.size()] - b.points[i]).norm() / b.segment_spacing[i];
+  }
+  if (length * b.layers > kMaxParticles)
+    ctx.fail(r.path(), "would create about " + num(std::round(length * b.layers)) + " boundary samples; the limit is " +
+                           num(kMaxParticles) + " (check spacing and layers)");
+  return b;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& file, const std::vector<std::string>& overrides) {
+  const Context ctx{file};
+  json root = parse_json(text, ctx);
+  for (const auto& o : overrides) apply_override(root, o);
+
+  Scene scene;
+  scene.file = file;
+  Reader top(ctx, &root, "");
+  // Look up every top-level key first so that a misspelt section is reported before
+  // anything that depends on it.
+  const json* name = top.find("name");
+  const json* spacing = top.find("spacing");
+  const json* sections[4] = {top.find("solver"), top.find("time"), top.find("stability"), top.find("output")};
+  const json* fluid = top.find("fluid");
+  const json* boundaries = top.find("boundaries");
+  top.finish();
+
+  std::string stem = std::filesystem::path(file).stem().string();
+  scene.name = name ? ctx.string(*name, "/name") : (stem.empty() ? "scene" : stem);
+  if (!spacing) ctx.fail("/spacing", "missing required key; the fluid particle spacing in m, a number > 0");
+  scene.spacing = ctx.number(*spacing, "/spacing", Range::positive("[m]"));
+  const double h = scene.spacing;
+
+  json resolved = root;
+  resolved["name"] = scene.name;
+  resolved["spacing"] = h;
+  {
+    Reader r(ctx, sections[0], "/solver");
+    scene.solver = read_solver(r, ctx);
+    resolved["solver"] = r.resolved();
+  }
+  {
+    Reader r(ctx, sections[1], "/time");
+    scene.time = read_time(r, ctx);
+    resolved["time"] = r.resolved();
+  }
+  {
+    Reader r(ctx, sections[2], "/stability");
+    scene.limits = read_stability(r);
+    resolved["stability"] = r.resolved();
+  }
+  {
+    Reader r(ctx, sections[3], "/output");
+    scene.output = read_output(r, ctx, scene.name);
+    resolved["output"] = r.resolved();
+  }
+
+  // Shapes.
+  if (!fluid) ctx.fail("/fluid", "missing required key; an array of fluid blocks (rectangle, ellipse, polygon)");
+  if (!fluid->is_array()) ctx.fail("/fluid", "expected an array of fluid blocks, got " + show(*fluid));
+  std::vector<shapes::FluidShape> blocks;
+  resolved["fluid"] = json::array();
+  for (std::size_t i = 0; i < fluid->size(); ++i) {
+    Reader r(ctx, &(*fluid)[i], "/fluid/" + std::to_string(i));
+    blocks.push_back(read_fluid_block(r, ctx));
+    resolved["fluid"].push_back(r.resolved());
+  }
+
+  std::vector<shapes::BoundaryShape> walls;
+  std::set<std::string> names;
+  resolved["boundaries"] = json::array();
+  if (boundaries && !boundaries->is_array()) ctx.fail("/boundaries", "expected an array of boundary objects, got " + show(*boundaries));
+  for (std::size_t i = 0; boundaries && i < boundaries->size(); ++i) {
+    Reader r(ctx, &(*boundaries)[i], "/boundaries/" + std::to_string(i));
+    BoundaryObject obj;
+    walls.push_back(read_boundary(r, ctx, i, h, obj.name, obj.shape));
+    if (!names.insert(obj.name).second)
+      ctx.fail(r.at("name"), "duplicate name \"" + obj.name + "\"; boundary names must be unique");
+    resolved["boundaries"].push_back(r.resolved());
+    scene.objects.push_back(obj);
+  }
+  scene.resolved = std::move(resolved);
+
+  // Boundary samples, one contiguous range per object.
+  for (std::size_t i = 0; i < walls.size(); ++i) {
+    const auto samples = walls[i].sample();
+    scene.objects[i].first = static_cast<Index>(scene.boundary_x.size());
+    scene.objects[i].count = static_cast<Index>(samples.size());
+    scene.boundary_x.insert(scene.boundary_x.end(), samples.begin(), samples.end());
+    scene.boundary_object.insert(scene.boundary_object.end(), samples.size(), static_cast<Index>(i));
+  }
+
+  // Fluid lattice, duplicates of overlapping blocks merged, then the boundary bands cleared.
+  double lattice_total = 0;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    Vec2 lo, hi;
+    blocks[i].bounding_box(lo, hi);
+    lattice_total += static_cast<double>(shapes::lattice_count(lo.x(), hi.x(), h)) *
+                     static_cast<double>(shapes::lattice_count(lo.y(), hi.y(), h));
+    if (lattice_total > kMaxParticles)
+      ctx.fail("/fluid/" + std::to_string(i), "the fluid would have more than " + num(kMaxParticles) +
+                                                  " lattice points; increase /spacing (now " + num(h) + " m)");
+  }
+  for (const auto& b : blocks) {
+    const auto pts = shapes::fill_lattice(b, h);
+    scene.fluid_x.insert(scene.fluid_x.end(), pts.begin(), pts.end());
+    scene.fluid_v.insert(scene.fluid_v.end(), pts.size(), b.velocity);
+  }
+  if (blocks.size() > 1) shapes::merge_duplicates(scene.fluid_x, scene.fluid_v, h, 1e-9 * h);
+  const std::size_t lattice_points = scene.fluid_x.size();
+  scene.fluid_removed = shapes::remove_covered_fluid(scene.fluid_x, scene.fluid_v, walls, scene.boundary_x, h);
+  if (scene.fluid_x.empty())
+    ctx.fail("/fluid", "the scene has no fluid particles (" + std::to_string(lattice_points) +
+                           (lattice_points ? " lattice points, all removed inside boundaries)"
+                                           : " lattice points: the fluid blocks are empty or have no area at this spacing)"));
+
+  // Bounds of everything at t = 0.
+  scene.bounds_min = scene.bounds_max = scene.fluid_x.front();
+  for (const auto* list : {&scene.fluid_x, &scene.boundary_x})
+    for (const Vec2& p : *list) {
+      scene.bounds_min = scene.bounds_min.cwiseMin(p);
+      scene.bounds_max = scene.bounds_max.cwiseMax(p);
+    }
+  return scene;
+}
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::error_code ec;
+  std::ifstream in(path, std::ios::binary);
+  if (!in || !std::filesystem::is_regular_file(path, ec)) throw SceneError(path + ": cannot open file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_scene(ss.str(), path, overrides);
+}
+
+}  // namespace sluice

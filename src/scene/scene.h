@@ -1,0 +1,65 @@
+#pragma once
+// A scene file (JSON) resolved into everything a simulation needs: settings, fluid
+// particles on a lattice, boundary samples with their object ids. Reading and
+// validation live in scene.cpp; sampling of shapes in shapes.cpp.
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sim/settings.h"
+#include "sim/types.h"
+
+namespace sluice {
+
+// A user mistake in a scene file or an override: the message names the file, the JSON
+// path (e.g. /solver/tolerance), the value and what is allowed.
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// One boundary object of the scene (a wall, a container, an obstacle). Its samples are
+// boundary_x[first, first + count).
+struct BoundaryObject {
+  std::string name;   // "name" key, or "<shape><index>"
+  std::string shape;  // box | polyline | polygon | circle | ellipse
+  bool moving = false;  // reserved for scripted motion; false: volumes computed once
+  Index first = 0;
+  Index count = 0;
+};
+
+struct OutputSettings {
+  std::string directory;                    // default "renders/<scene name>"
+  std::vector<std::string> export_formats;  // subset of {"csv", "vtk"}
+};
+
+struct Scene {
+  std::string file;    // path as given (for messages)
+  std::string name;    // "name" key, or the file's stem
+  double spacing = 0;  // fluid particle spacing h [m]; kernel support is 2h
+  SolverSettings solver;
+  TimeSettings time;
+  StabilityLimits limits;
+  OutputSettings output;
+
+  std::vector<Vec2> fluid_x, fluid_v;      // initial fluid particles
+  std::vector<Vec2> boundary_x;            // all boundary samples
+  std::vector<Index> boundary_object;      // object index of each boundary sample
+  std::vector<BoundaryObject> objects;
+  Index fluid_removed = 0;                 // lattice points dropped inside boundary bands
+
+  Vec2 bounds_min{0, 0}, bounds_max{0, 0};  // box around all particles at t = 0
+  nlohmann::json resolved;                  // the scene with every default filled in
+};
+
+// Reads and validates a scene file; each override is "json/path=value" or
+// "json.path=value" (value parsed as JSON, else taken as a string), applied before
+// validation. Throws SceneError.
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// Same from JSON text already in memory; `file` is only used in messages.
+Scene parse_scene(const std::string& text, const std::string& file,
+                  const std::vector<std::string>& overrides = {});
+
+}  // namespace sluice

@@ -1,0 +1,56 @@
+#pragma once
+// Cubic spline kernel in 2D, thesis section 2.2.2:
+//   W(r, h) = alpha_2 * { (2-q)^3 - 4(1-q)^3  for 0 <= q < 1
+//                        (2-q)^3             for 1 <= q < 2
+//                        0                   for q >= 2 },   q = |r| / h,
+//   alpha_2 = 5 / (14 pi h^2), support radius 2h.
+// (The thesis prints "+ 4(1-q)^3"; the standard spline that integrates to one and is
+// smooth at q = 1 has the minus sign, which the kernel test checks.)
+#include <cmath>
+
+#include "sim/types.h"
+
+namespace sluice {
+
+class CubicSpline2D {
+ public:
+  explicit CubicSpline2D(double h)
+      : h_(h), inv_h_(1.0 / h), alpha_(5.0 / (14.0 * M_PI * h * h)), support_(2.0 * h) {}
+
+  double h() const { return h_; }
+  double support() const { return support_; }
+
+  // W(|r|) for a distance r >= 0.
+  double W(double r) const {
+    const double q = r * inv_h_;
+    if (q >= 2.0) return 0.0;
+    const double a = 2.0 - q;
+    double w = a * a * a;
+    if (q < 1.0) {
+      const double b = 1.0 - q;
+      w -= 4.0 * b * b * b;
+    }
+    return alpha_ * w;
+  }
+  double W(const Vec2& r) const { return W(r.norm()); }
+
+  // dW/dr divided by r: gradW(r_vec) = r_vec * dWdr_over_r(|r|). Zero at r = 0.
+  double dWdr_over_r(double r) const {
+    const double q = r * inv_h_;
+    if (q >= 2.0 || r <= 0.0) return 0.0;
+    const double a = 2.0 - q;
+    double d = -3.0 * a * a;
+    if (q < 1.0) {
+      const double b = 1.0 - q;
+      d += 12.0 * b * b;
+    }
+    return alpha_ * d * inv_h_ / r;
+  }
+  // Gradient with respect to x_i of W(x_i - x_j): grad W(x_ij).
+  Vec2 gradW(const Vec2& r) const { return r * dWdr_over_r(r.norm()); }
+
+ private:
+  double h_, inv_h_, alpha_, support_;
+};
+
+}  // namespace sluice

@@ -1,0 +1,164 @@
+#include "sim/neighbors.h"
+
+#include <algorithm>
+#include <bit>
+#include <numeric>
+
+#include "sim/kernel.h"
+#include "sim/parallel.h"
+
+namespace sluice {
+
+void SpatialHashGrid::build(const std::vector<Vec2>& points, double cell_size) {
+  const size_t n = points.size();
+  inv_cell_ = 1.0 / cell_size;
+  const std::uint32_t buckets = std::bit_ceil(static_cast<std::uint32_t>(std::max<size_t>(2 * n, 64)));
+  mask_ = buckets - 1;
+  start_.assign(buckets + 1, 0);
+  key_.resize(n);
+  // Counting sort by bucket: serial, O(n), deterministic.
+  for (size_t i = 0; i < n; ++i) {
+    key_[i] = bucket(cell_coord(points[i].x()), cell_coord(points[i].y()));
+    ++start_[key_[i] + 1];
+  }
+  for (std::uint32_t b = 0; b < buckets; ++b) start_[b + 1] += start_[b];
+  entries_.resize(n);
+  pos_.resize(n);
+  std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+  for (size_t i = 0; i < n; ++i) {
+    const std::uint32_t e = fill[key_[i]]++;
+    entries_[e] = static_cast<Index>(i);
+    pos_[e] = points[i];
+  }
+}
+
+void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid,
+                    const CubicSpline2D& kernel, bool exclude_self, PairCache cache,
+                    NeighborLists& out) {
+  const Index n = static_cast<Index>(query.size());
+  const double radius = kernel.support();
+  out.offset.resize(static_cast<size_t>(n) + 1);
+  out.offset[0] = 0;
+  // Pass 1: count. Pass 2: fill. Each query writes only its own slots.
+  parallel_for(n, [&](Index i) {
+    Index c = 0;
+    grid.for_each_within(query[i], radius, [&](Index j, const Vec2&) { c += !(exclude_self && j == i); });
+    out.offset[i + 1] = c;
+  });
+  for (Index i = 0; i < n; ++i) out.offset[i + 1] += out.offset[i];
+  const size_t pairs = static_cast<size_t>(out.offset[n]);
+  out.j.resize(pairs);
+  if (cache.grad) out.grad.resize(pairs);
+  if (cache.w) out.w.resize(pairs);
+  parallel_for(n, [&](Index i) {
+    Index k = out.offset[i];
+    const Vec2 xi = query[i];
+    grid.for_each_within(xi, radius, [&](Index j, const Vec2& xj) {
+      if (exclude_self && j == i) return;
+      out.j[k] = j;
+      if (cache.grad || cache.w) {
+        const Vec2 r = xi - xj;
+        const double d = r.norm();
+        if (cache.grad) out.grad[k] = r * kernel.dWdr_over_r(d);
+        if (cache.w) out.w[k] = kernel.W(d);
+      }
+      ++k;
+    });
+  });
+}
+
+void find_neighbors_brute_force(const std::vector<Vec2>& query, const std::vector<Vec2>& points,
+                                double radius, bool exclude_self, NeighborLists& out) {
+  const Index n = static_cast<Index>(query.size());
+  const Index m = static_cast<Index>(points.size());
+  const double r2 = radius * radius;
+  out.offset.assign(static_cast<size_t>(n) + 1, 0);
+  out.j.clear();
+  out.grad.clear();
+  out.w.clear();
+  for (Index i = 0; i < n; ++i) {
+    for (Index j = 0; j < m; ++j) {
+      if (exclude_self && i == j) continue;
+      if ((query[i] - points[j]).squaredNorm() < r2) out.j.push_back(j);
+    }
+    out.offset[i + 1] = static_cast<Index>(out.j.size());
+  }
+}
+
+namespace {
+// Interleaves the bits of two 32-bit cell coordinates (Morton / Z-order).
+std::uint64_t morton(std::uint32_t x, std::uint32_t y) {
+  auto spread = [](std::uint64_t v) {
+    v &= 0xffffffffULL;
+    v = (v | (v << 16)) & 0x0000ffff0000ffffULL;
+    v = (v | (v << 8)) & 0x00ff00ff00ff00ffULL;
+    v = (v | (v << 4)) & 0x0f0f0f0f0f0f0f0fULL;
+    v = (v | (v << 2)) & 0x3333333333333333ULL;
+    v = (v | (v << 1)) & 0x5555555555555555ULL;
+    return v;
+  };
+  return spread(x) | (spread(y) << 1);
+}
+}  // namespace
+
+std::vector<Index> spatial_order(const std::vector<Vec2>& points, double cell_size) {
+  const size_t n = points.size();
+  std::vector<Index> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  if (n == 0) return order;
+  // Cell coordinates relative to the lowest occupied cell, so any coordinates work.
+  double minx = points[0].x(), miny = points[0].y();
+  for (const Vec2& p : points) {
+    minx = std::min(minx, p.x());
+    miny = std::min(miny, p.y());
+  }
+  std::vector<std::uint64_t> code(n);
+  for (size_t i = 0; i < n; ++i) {
+    const double cx = std::floor((points[i].x() - minx) / cell_size);
+    const double cy = std::floor((points[i].y() - miny) / cell_size);
+    const auto clampu = [](double v) { return static_cast<std::uint32_t>(std::min(v, 4294967295.0)); };
+    code[i] = morton(clampu(cx), clampu(cy));
+  }
+  std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) { return code[a] < code[b]; });
+  return order;
+}
+
+}  // namespace sluice
+
+namespace sluice {
+
+void fill_pair_cache(const std::vector<Vec2>& query, const std::vector<Vec2>& points,
+                     const CubicSpline2D& kernel, PairCache cache, NeighborLists& lists) {
+  const Index n = static_cast<Index>(query.size());
+  if (cache.grad) lists.grad.resize(lists.j.size());
+  if (cache.w) lists.w.resize(lists.j.size());
+  parallel_for(n, [&](Index i) {
+    for (Index k = lists.offset[i]; k < lists.offset[i + 1]; ++k) {
+      const Vec2 r = query[i] - points[lists.j[k]];
+      const double d = r.norm();
+      if (cache.grad) lists.grad[k] = r * kernel.dWdr_over_r(d);
+      if (cache.w) lists.w[k] = kernel.W(d);
+    }
+  });
+}
+
+void transpose_neighbors(const NeighborLists& fb, Index boundary_count, NeighborLists& bf) {
+  const Index n = static_cast<Index>(fb.offset.size()) - 1;
+  bf.offset.assign(static_cast<size_t>(boundary_count) + 1, 0);
+  for (Index k = 0; k < fb.pairs(); ++k) ++bf.offset[fb.j[k] + 1];
+  for (Index b = 0; b < boundary_count; ++b) bf.offset[b + 1] += bf.offset[b];
+  bf.j.resize(static_cast<size_t>(fb.pairs()));
+  bf.w.resize(static_cast<size_t>(fb.pairs()));
+  bf.grad.clear();
+  std::vector<Index> fill(bf.offset.begin(), bf.offset.end() - 1);
+  // Serial and in fluid order: deterministic, and each boundary list sorted by fluid index.
+  for (Index i = 0; i < n; ++i) {
+    for (Index k = fb.offset[i]; k < fb.offset[i + 1]; ++k) {
+      const Index e = fill[fb.j[k]]++;
+      bf.j[e] = i;
+      bf.w[e] = fb.w[k];
+    }
+  }
+}
+
+}  // namespace sluice

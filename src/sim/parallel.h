@@ -1,0 +1,56 @@
+#pragma once
+// The one parallel-for helper of the library, and reductions that give the same
+// bits for any thread count: partial results over fixed blocks of indices, combined
+// in block order on one thread (never float atomics or OpenMP reductions).
+#include <omp.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "sim/types.h"
+
+namespace sluice {
+
+inline constexpr Index kReduceBlock = 1024;
+
+template <class F>
+void parallel_for(Index n, F&& f) {
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < n; ++i) f(i);
+}
+
+// Sum of f(i) over [0, n), deterministic for any thread count.
+template <class F>
+double parallel_sum(Index n, F&& f) {
+  const Index blocks = (n + kReduceBlock - 1) / kReduceBlock;
+  std::vector<double> partial(static_cast<size_t>(blocks), 0.0);
+#pragma omp parallel for schedule(static)
+  for (Index b = 0; b < blocks; ++b) {
+    const Index end = std::min(n, (b + 1) * kReduceBlock);
+    double s = 0.0;
+    for (Index i = b * kReduceBlock; i < end; ++i) s += f(i);
+    partial[static_cast<size_t>(b)] = s;
+  }
+  double total = 0.0;
+  for (double s : partial) total += s;
+  return total;
+}
+
+// Maximum of f(i) over [0, n) (`init` when n = 0); max is order-independent.
+template <class F>
+double parallel_max(Index n, double init, F&& f) {
+  const Index blocks = (n + kReduceBlock - 1) / kReduceBlock;
+  std::vector<double> partial(static_cast<size_t>(blocks), init);
+#pragma omp parallel for schedule(static)
+  for (Index b = 0; b < blocks; ++b) {
+    const Index end = std::min(n, (b + 1) * kReduceBlock);
+    double m = init;
+    for (Index i = b * kReduceBlock; i < end; ++i) m = std::max(m, f(i));
+    partial[static_cast<size_t>(b)] = m;
+  }
+  double m = init;
+  for (double s : partial) m = std::max(m, s);
+  return m;
+}
+
+}  // namespace sluice

@@ -1,0 +1,18 @@
+#include "sim/settings.h"
+
+namespace sluice {
+
+const char* to_string(SolverType t) { return t == SolverType::IISPH ? "iisph" : "wcsph"; }
+
+const char* to_string(BoundaryPressure b) {
+  switch (b) {
+    case BoundaryPressure::Extrapolation: return "extrapolation";
+    case BoundaryPressure::Mirroring: return "mirroring";
+    case BoundaryPressure::Zero: return "zero";
+  }
+  return "?";
+}
+
+const char* to_string(PressureInit p) { return p == PressureInit::Thesis ? "thesis" : "warm"; }
+
+}  // namespace sluice

@@ -1,0 +1,74 @@
+#pragma once
+// Solver and time settings: plain structs, every default in one place.
+// Units are SI in 2D: m, s, kg/m^2 (density), Pa*m = N/m (2D pressure).
+#include <string>
+
+#include "sim/types.h"
+
+namespace sluice {
+
+enum class SolverType { IISPH, WCSPH };
+
+// How a fluid particle sees the pressure of its boundary neighbours (section 4.2).
+enum class BoundaryPressure {
+  Extrapolation,  // Eq. 25: p_b from its fluid neighbours plus the hydrostatic term
+  Mirroring,      // section 4.2.2: p_b = p_f, rho_b = rho_f
+  Zero,           // section 4.2.3: p_b = 0
+};
+
+// Initial pressure guess p^(0) of the relaxed Jacobi solver (Algorithm 2).
+enum class PressureInit {
+  Thesis,     // p^(0) = max(omega s_i / a_ii, 0), Eq. 21 with p = 0, Ap = 0
+  WarmStart,  // p^(0) = 0.5 * p from the previous step ([Ihm+14a]'s choice)
+};
+
+const char* to_string(SolverType t);
+const char* to_string(BoundaryPressure b);
+const char* to_string(PressureInit p);
+
+struct SolverSettings {
+  SolverType type = SolverType::IISPH;
+  double rest_density = 1000.0;         // rho0 [kg/m^2], > 0
+  Vec2 gravity{0.0, -9.81};             // a_ext [m/s^2]
+  double viscosity = 0.0;               // kinematic nu [m^2/s], >= 0, Eq. 12; 0 skips the pass
+  // IISPH (chapter 3)
+  double tolerance_percent = 0.1;       // average predicted compression error (Eq. 23) [%], > 0
+  double omega = 0.5;                   // relaxation of Eq. 21, in (0, 1]
+  int min_iterations = 3;               // [Cor+19]: at least 3 iterations
+  int max_iterations = 100;
+  PressureInit pressure_init = PressureInit::WarmStart;
+  // Include in a_ii the dependence of the boundary pressure on p_i (mirroring: p_b = p_i
+  // doubles the boundary part; extrapolation: p_b carries p_i with weight W_bi / sum W).
+  // Off: Eq. 26 as printed, where the boundary enters d_ii once. See solve_pressure_iisph.
+  bool boundary_diagonal = true;
+  // WCSPH (section 2.3.1)
+  double stiffness = 1.0e6;             // k [Pa*m], > 0
+  // Boundaries (chapter 4)
+  BoundaryPressure boundary_pressure = BoundaryPressure::Extrapolation;
+  // Boundary volume scale, V_b = gamma1 / sum_b W (section 4.1), > 0. Akinci's volume
+  // over-estimates the cell of a wall sample, whose kernel sum misses the fluid side:
+  // for two or more layers at the fluid spacing (the default sampling) V_b = 1.188 h^2,
+  // and a fluid row one spacing off the wall reaches 1.031 rho0 with gamma1 = 1. With
+  // 0.84 that row is at rest density, so a block placed against a wall starts at rest
+  // instead of being pushed off in the first step (tests/test_physics.cpp checks it).
+  double gamma1 = 0.84;
+  double gamma2 = 1.0;                  // boundary density contribution (section 4.1), >= 0
+  double gamma3 = 1.0;                  // boundary pressure force (Eq. 24), >= 0
+};
+
+struct TimeSettings {
+  double duration = 4.0;   // simulated seconds, > 0
+  double fps = 30.0;       // frame rate; steps always land on frame times, > 0
+  double dt = 0.0;         // fixed step [s]; 0 selects the adaptive CFL step
+  double cfl = 0.4;        // lambda of Eq. 14, in (0, 2]
+  double dt_max = 1.0e-3;  // largest adaptive step [s]
+  double dt_min = 1.0e-6;  // smallest adaptive step [s]; a smaller one means the run went unstable
+};
+
+// Limits of the instability detector: a run stops with a message when one is exceeded.
+struct StabilityLimits {
+  double max_error_percent = 50.0;  // largest per-step compression error [%]
+  double bounds_margin = 10.0;      // particles farther than this many scene sizes are lost
+};
+
+}  // namespace sluice

@@ -1,0 +1,500 @@
+#include "sim/simulation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "sim/parallel.h"
+
+namespace sluice {
+
+namespace {
+
+constexpr long kReorderEvery = 16;  // steps between spatial sorts of the fluid arrays
+
+// Warm start p^(0) = 0.5 p(t - dt), the choice of [Ihm+14a]. A factor of 1 keeps the
+// part of the previous pressure that the operator A barely sees (lattice-scale,
+// checkerboard-like noise) forever; it then drives particles apart and a column at
+// rest never settles (kinetic energy grows). Halving it every step lets it decay.
+constexpr double kWarmStartFactor = 0.5;
+
+class Stopwatch {
+ public:
+  Stopwatch() : t0_(std::chrono::steady_clock::now()) {}
+  double ms() const {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point t0_;
+};
+
+// Relative compression of Eq. 15 in percent.
+inline double compression_percent(double rho, double rho0) {
+  return std::max(100.0 * (rho - rho0) / rho0, 0.0);
+}
+
+}  // namespace
+
+// sum_j W(x_ij) over a square lattice of spacing h (self included): 1.000862 / h^2 for
+// the cubic spline. The fluid mass is rho0 / this sum, so that a filled lattice is at
+// rest density exactly; with m = rho0 h^2 every particle of the initial block would be
+// 0.086% compressed and IISPH would push the whole block apart in its first step.
+double lattice_kernel_sum(const CubicSpline2D& kernel) {
+  double sum = 0.0;
+  for (int i = -2; i <= 2; ++i)
+    for (int j = -2; j <= 2; ++j) sum += kernel.W(kernel.h() * std::sqrt(double(i * i + j * j)));
+  return sum;
+}
+
+Simulation::Simulation(const Scene& scene)
+    : scene_(scene),
+      settings_(scene.solver),
+      kernel_(scene.spacing),
+      mass_(scene.solver.rest_density / lattice_kernel_sum(kernel_)) {
+  const Index n = static_cast<Index>(scene.fluid_x.size());
+  fluid_.resize(n);
+  for (Index i = 0; i < n; ++i) {
+    fluid_.x[i] = scene.fluid_x[i];
+    fluid_.v[i] = i < static_cast<Index>(scene.fluid_v.size()) ? scene.fluid_v[i] : Vec2::Zero();
+    fluid_.rho[i] = settings_.rest_density;
+    fluid_.p[i] = 0.0;
+    fluid_.id[i] = i;
+  }
+
+  // Boundary particles in spatial order, once: they never move (yet).
+  const std::vector<Index> order = spatial_order(scene.boundary_x, kernel_.support());
+  const Index nb = static_cast<Index>(order.size());
+  boundary_.x.resize(nb);
+  boundary_.object.resize(nb);
+  for (Index k = 0; k < nb; ++k) {
+    boundary_.x[k] = scene.boundary_x[order[k]];
+    boundary_.object[k] = scene.boundary_object.empty() ? 0 : scene.boundary_object[order[k]];
+  }
+  boundary_.v.assign(nb, Vec2::Zero());
+  boundary_.p.assign(nb, 0.0);
+  boundary_grid_.build(boundary_.x, kernel_.support());
+  compute_boundary_volumes();
+
+  const Vec2 size = (scene.bounds_max - scene.bounds_min).cwiseMax(Vec2::Constant(scene.spacing));
+  const double margin = scene.limits.bounds_margin * size.maxCoeff();
+  lost_min_ = scene.bounds_min - Vec2::Constant(margin);
+  lost_max_ = scene.bounds_max + Vec2::Constant(margin);
+
+  last_frame_ = static_cast<Index>(std::ceil(scene.time.duration * scene.time.fps - 1e-9));
+  reorder_fluid();
+  recompute_density();
+}
+
+// Section 4.1: V_b = gamma1 / sum_b' W(x_bb'), summed over all boundary particles of
+// every object (self included), so touching objects share their volume.
+void Simulation::compute_boundary_volumes() {
+  const Index nb = boundary_.size();
+  boundary_.volume.resize(nb);
+  NeighborLists bb;
+  find_neighbors(boundary_.x, boundary_grid_, kernel_, /*exclude_self=*/true, {.grad = false, .w = true}, bb);
+  const double w0 = kernel_.W(0.0);
+  parallel_for(nb, [&](Index b) {
+    double sum = w0;
+    for (Index k = bb.offset[b]; k < bb.offset[b + 1]; ++k) sum += bb.w[k];
+    boundary_.volume[b] = settings_.gamma1 / sum;
+  });
+}
+
+void Simulation::reorder_fluid() {
+  const std::vector<Index> order = spatial_order(fluid_.x, kernel_.support());
+  std::vector<Vec2> sv;
+  std::vector<double> sd;
+  std::vector<Index> si;
+  apply_permutation(fluid_.x, order, sv);
+  apply_permutation(fluid_.v, order, sv);
+  apply_permutation(fluid_.rho, order, sd);
+  apply_permutation(fluid_.p, order, sd);
+  apply_permutation(fluid_.id, order, si);
+}
+
+void Simulation::recompute_density() {
+  find_neighbors_phase();
+  compute_density();
+}
+
+// ---------------------------------------------------------------------------------
+// The step (Algorithm 2: neighbours and density, non-pressure accelerations, pressure
+// solve, integration), each phase timed.
+StepStats Simulation::step() {
+  const Stopwatch total;
+  StepStats st;
+  st.step = step_ + 1;
+  st.fluid_particles = fluid_.size();
+
+  // Time step of Eq. 14 (or fixed), shortened so that steps land on the next frame time.
+  const double target = std::min(static_cast<double>(frame_ + 1) / scene_.time.fps, scene_.time.duration);
+  const double remaining = target - time_;
+  const double dt_nominal = choose_time_step();
+  const double n_steps = std::max(1.0, std::ceil(remaining / dt_nominal - 1e-9));
+  const double dt = remaining / n_steps;
+  st.dt = dt;
+
+  if (step_ % kReorderEvery == 0) reorder_fluid();
+  {
+    const Stopwatch t;
+    find_neighbors_phase();
+    st.ms_neighbors = t.ms();
+  }
+  {
+    const Stopwatch t;
+    compute_density();
+    const Index n = fluid_.size();
+    const double rho0 = settings_.rest_density;
+    st.density_error_percent =
+        n ? parallel_sum(n, [&](Index i) { return compression_percent(fluid_.rho[i], rho0); }) / n : 0.0;
+    apply_nonpressure(dt);
+    st.ms_nonpressure = t.ms();
+  }
+  {
+    const Stopwatch t;
+    if (settings_.type == SolverType::IISPH)
+      solve_pressure_iisph(dt, st);
+    else
+      solve_pressure_wcsph(dt, st);
+    st.ms_pressure = t.ms();
+  }
+  {
+    const Stopwatch t;
+    integrate(dt);
+    const Index n = fluid_.size();
+    const double vmax = std::sqrt(parallel_max(n, 0.0, [&](Index i) { return fluid_.v[i].squaredNorm(); }));
+    st.max_cfl = vmax * dt / scene_.spacing;
+    st.ms_integrate = t.ms();
+  }
+
+  ++step_;
+  if (n_steps == 1.0) {
+    time_ = target;
+    ++frame_;
+    st.frame = frame_;
+  } else {
+    time_ += dt;
+  }
+  st.time = time_;
+  st.ms_total = total.ms();
+  check_stability(st);
+  return st;
+}
+
+// Fixed dt, or the CFL condition Eq. 14: dt = lambda h / v_max, at most dt_max.
+double Simulation::choose_time_step() const {
+  const TimeSettings& ts = scene_.time;
+  if (ts.dt > 0) return ts.dt;
+  const Index n = fluid_.size();
+  const double vmax = std::sqrt(parallel_max(n, 0.0, [&](Index i) { return fluid_.v[i].squaredNorm(); }));
+  double dt = ts.dt_max;
+  if (vmax > 0) dt = std::min(dt, ts.cfl * scene_.spacing / vmax);
+  if (dt < ts.dt_min) {
+    std::ostringstream os;
+    os << "unstable at step " << step_ + 1 << ", t = " << time_ << " s: the CFL time step " << dt
+       << " s fell below time.dt_min = " << ts.dt_min << " s (max speed " << vmax << " m/s)";
+    throw SimulationUnstable(os.str());
+  }
+  return dt;
+}
+
+void Simulation::find_neighbors_phase() {
+  const PairCache both{.grad = true, .w = true};
+  if (brute_force_) {
+    find_neighbors_brute_force(fluid_.x, fluid_.x, kernel_.support(), true, ff_);
+    fill_pair_cache(fluid_.x, fluid_.x, kernel_, both, ff_);
+    find_neighbors_brute_force(fluid_.x, boundary_.x, kernel_.support(), false, fb_);
+    fill_pair_cache(fluid_.x, boundary_.x, kernel_, both, fb_);
+  } else {
+    fluid_grid_.build(fluid_.x, kernel_.support());
+    find_neighbors(fluid_.x, fluid_grid_, kernel_, /*exclude_self=*/true, both, ff_);
+    find_neighbors(fluid_.x, boundary_grid_, kernel_, /*exclude_self=*/false, both, fb_);
+  }
+  // Eq. 25 gathers over the fluid neighbours of each boundary particle.
+  if (settings_.boundary_pressure == BoundaryPressure::Extrapolation) transpose_neighbors(fb_, boundary_.size(), bf_);
+}
+
+// Eq. 13 with the boundary term of section 4.1:
+//   rho_i = sum_f m_f W_if + gamma2 sum_b m_b W_ib,  m_b = rho0 V_b.
+void Simulation::compute_density() {
+  const double w0 = kernel_.W(0.0);
+  const double rho0 = settings_.rest_density, g2 = settings_.gamma2;
+  parallel_for(fluid_.size(), [&](Index i) {
+    double sf = w0;
+    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) sf += ff_.w[k];
+    double sb = 0.0;
+    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) sb += boundary_.volume[fb_.j[k]] * fb_.w[k];
+    fluid_.rho[i] = mass_ * sf + g2 * rho0 * sb;
+  });
+}
+
+// v* = v + dt (a_v + g) with the viscosity of Eq. 12 against fluid and boundary
+// neighbours (boundary neighbours with their own velocity, m_b / rho_b = V_b).
+// With zero viscosity the neighbour pass is skipped.
+void Simulation::apply_nonpressure(double dt) {
+  const Vec2 g = settings_.gravity;
+  const double nu = settings_.viscosity;
+  const Index n = fluid_.size();
+  if (nu <= 0.0) {
+    parallel_for(n, [&](Index i) { fluid_.v[i] += dt * g; });
+    return;
+  }
+  std::vector<Vec2>& a_v = scratch_.a_p;  // reused as scratch: a_p is recomputed later
+  a_v.resize(n);
+  const double eps = 0.01 * scene_.spacing * scene_.spacing;
+  parallel_for(n, [&](Index i) {
+    const Vec2 xi = fluid_.x[i], vi = fluid_.v[i];
+    Vec2 a = Vec2::Zero();
+    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
+      const Index j = ff_.j[k];
+      const Vec2 xij = xi - fluid_.x[j];
+      a += (mass_ / fluid_.rho[j]) * (xij.dot(ff_.grad[k]) / (xij.squaredNorm() + eps)) * (vi - fluid_.v[j]);
+    }
+    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
+      const Index b = fb_.j[k];
+      const Vec2 xib = xi - boundary_.x[b];
+      a += boundary_.volume[b] * (xib.dot(fb_.grad[k]) / (xib.squaredNorm() + eps)) * (vi - boundary_.v[b]);
+    }
+    a_v[i] = 2.0 * nu * a;
+  });
+  parallel_for(n, [&](Index i) { fluid_.v[i] += dt * (a_v[i] + g); });
+}
+
+// Per-step boundary quantities of the pressure solvers:
+//   grad_b_i = sum_b m_b grad W_ib (Eq. 24 and Eq. 26 boundary sums),
+//   for Eq. 25: sum_f W_bf and g . sum_f rho_f x_bf W_bf.
+void Simulation::prepare_boundary_terms(double /*dt*/) {
+  const Index n = fluid_.size(), nb = boundary_.size();
+  const double rho0 = settings_.rest_density;
+  scratch_.grad_b.resize(n);
+  parallel_for(n, [&](Index i) {
+    Vec2 g = Vec2::Zero();
+    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) g += (rho0 * boundary_.volume[fb_.j[k]]) * fb_.grad[k];
+    scratch_.grad_b[i] = g;
+  });
+  scratch_.pb_over_rho2.assign(nb, 0.0);
+  if (settings_.boundary_pressure != BoundaryPressure::Extrapolation) return;
+  scratch_.ext_wsum.resize(nb);
+  scratch_.ext_gravity.resize(nb);
+  const Vec2 gravity = settings_.gravity;
+  parallel_for(nb, [&](Index b) {
+    double ws = 0.0;
+    Vec2 xr = Vec2::Zero();
+    for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) {
+      const Index f = bf_.j[k];
+      ws += bf_.w[k];
+      xr += (fluid_.rho[f] * bf_.w[k]) * (boundary_.x[b] - fluid_.x[f]);
+    }
+    scratch_.ext_wsum[b] = ws;
+    scratch_.ext_gravity[b] = gravity.dot(xr);
+  });
+}
+
+// Boundary pressure seen by fluid neighbours, as p_b / rho_b^2 (rho_b = rho0):
+// extrapolation, Eq. 25: p_b = (sum_f p_f W_bf + g . sum_f rho_f x_bf W_bf) / sum_f W_bf,
+// clamped at zero like fluid pressures. Mirroring and zero pressure need no pass.
+void Simulation::update_boundary_pressure() {
+  if (settings_.boundary_pressure != BoundaryPressure::Extrapolation) return;
+  const double inv_rho0_2 = 1.0 / (settings_.rest_density * settings_.rest_density);
+  parallel_for(boundary_.size(), [&](Index b) {
+    const double ws = scratch_.ext_wsum[b];
+    double p = 0.0;
+    if (ws > 0.0) {
+      double sp = 0.0;
+      for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) sp += fluid_.p[bf_.j[k]] * bf_.w[k];
+      p = std::max((sp + scratch_.ext_gravity[b]) / ws, 0.0);
+    }
+    boundary_.p[b] = p;
+    scratch_.pb_over_rho2[b] = p * inv_rho0_2;
+  });
+}
+
+// Eq. 24: a_i = - sum_f m_f (p_i/rho_i^2 + p_f/rho_f^2) grad W_if
+//               - gamma3 sum_b m_b (p_i/rho_i^2 + p_b/rho_b^2) grad W_ib.
+// Mirroring (4.2.2) sets p_b/rho_b^2 = p_i/rho_i^2, zero pressure (4.2.3) p_b = 0, so
+// their boundary sum is c gamma3 (p_i/rho_i^2) grad_b_i with c = 2 or 1.
+void Simulation::compute_pressure_acceleration() {
+  const Index n = fluid_.size();
+  const double g3 = settings_.gamma3, rho0 = settings_.rest_density;
+  const bool extrapolate = settings_.boundary_pressure == BoundaryPressure::Extrapolation;
+  const double c = settings_.boundary_pressure == BoundaryPressure::Mirroring ? 2.0 : 1.0;
+  const std::vector<double>& pr = scratch_.p_over_rho2;
+  scratch_.a_p.resize(n);
+  parallel_for(n, [&](Index i) {
+    const double pri = pr[i];
+    Vec2 a = Vec2::Zero();
+    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) a += (pri + pr[ff_.j[k]]) * ff_.grad[k];
+    a *= -mass_;
+    a -= (c * g3 * pri) * scratch_.grad_b[i];
+    if (extrapolate) {
+      Vec2 ab = Vec2::Zero();
+      for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
+        const Index b = fb_.j[k];
+        ab += (boundary_.volume[b] * scratch_.pb_over_rho2[b]) * fb_.grad[k];
+      }
+      a -= (g3 * rho0) * ab;
+    }
+    scratch_.a_p[i] = a;
+  });
+}
+
+// ---------------------------------------------------------------------------------
+// IISPH pressure solver (chapter 3, Algorithm 2, relaxed Jacobi).
+//
+// With the pressure accelerations of Eq. 24, the PPE of Eq. 17 for fluid particle i is
+//   (Ap)_i = dt [ sum_f m_f (a_i - a_f) . grad W_if + gamma2 sum_b m_b (a_i - a_b) . grad W_ib ]
+//          = s_i = (rho0 - rho*_i) / dt                                      (Eq. 19, 20)
+// where rho*_i = rho_i + dt [ sum_f m_f v*_if . grad W_if + gamma2 sum_b m_b v*_ib . grad W_ib ]
+// (Eq. 16; the boundary particle enters with its own velocity, a_b = 0 for a wall).
+// The predicted density after the pressure update is rho*_i + dt (Ap)_i, so the
+// relative compression of Eq. 23 is 100 dt ((Ap)_i - s_i) / rho0 (the thesis writes
+// Eq. 23 without the factor dt because its A and s carry 1/dt).
+//
+// Diagonal (Eq. 22/26), derived for the chosen boundary method: writing
+//   a_i = p_i D_i + (terms without p_i),
+//   D_i = -(1/rho_i^2) (sum_f m_f grad W_if + c gamma3 grad_b_i) - E_i,
+// with c = 2 for mirroring (p_b/rho_b^2 = p_i/rho_i^2) and 1 otherwise, and for
+// extrapolation E_i = (gamma3 / rho0^2) sum_b m_b (W_bi / sum_f W_bf) grad W_ib, the
+// share of p_i in each p_b of Eq. 25. Each fluid neighbour f holds p_i through
+// a_f = ... - m_i (p_i/rho_i^2) grad W_fi, so
+//   a_ii = dt [ D_i . (sum_f m_f grad W_if + gamma2 grad_b_i) - (m_i^2/rho_i^2) sum_f |grad W_if|^2 ].
+// Eq. 26 as printed is c = 1 and E = 0 (boundary_diagonal = false).
+void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
+  const Index n = fluid_.size();
+  const SolverSettings& s = settings_;
+  const double rho0 = s.rest_density, g2 = s.gamma2, g3 = s.gamma3, omega = s.omega;
+  prepare_boundary_terms(dt);
+  scratch_.s.resize(n);
+  scratch_.a_ii.resize(n);
+  scratch_.p_over_rho2.resize(n);
+  const bool mirror = s.boundary_pressure == BoundaryPressure::Mirroring;
+  const bool extrapolate = s.boundary_pressure == BoundaryPressure::Extrapolation;
+  const double c = (mirror && s.boundary_diagonal) ? 2.0 : 1.0;
+  const bool coupling = extrapolate && s.boundary_diagonal;
+  const bool thesis_init = s.pressure_init == PressureInit::Thesis;
+
+  // Source term s_i (Eq. 19), diagonal a_ii (Eq. 26), initial pressure p^(0) (Eq. 21).
+  parallel_for(n, [&](Index i) {
+    const Vec2 vi = fluid_.v[i];
+    const double rhoi = fluid_.rho[i];
+    double div = 0.0, grad2 = 0.0;
+    Vec2 sum_grad = Vec2::Zero();
+    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
+      const Vec2& gw = ff_.grad[k];
+      div += (vi - fluid_.v[ff_.j[k]]).dot(gw);
+      sum_grad += gw;
+      grad2 += gw.squaredNorm();
+    }
+    div *= mass_;
+    sum_grad *= mass_;
+    double div_b = 0.0;
+    Vec2 e = Vec2::Zero();
+    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
+      const Index b = fb_.j[k];
+      const double mb = rho0 * boundary_.volume[b];
+      div_b += mb * (vi - boundary_.v[b]).dot(fb_.grad[k]);
+      if (coupling && scratch_.ext_wsum[b] > 0.0) e += (mb * fb_.w[k] / scratch_.ext_wsum[b]) * fb_.grad[k];
+    }
+    scratch_.s[i] = (rho0 - rhoi) / dt - (div + g2 * div_b);
+    const double inv_rho2 = 1.0 / (rhoi * rhoi);
+    const Vec2 d = -inv_rho2 * (sum_grad + (c * g3) * scratch_.grad_b[i]) - (g3 / (rho0 * rho0)) * e;
+    const double aii = dt * (d.dot(sum_grad + g2 * scratch_.grad_b[i]) - mass_ * mass_ * inv_rho2 * grad2);
+    scratch_.a_ii[i] = aii;
+    double p0 = kWarmStartFactor * fluid_.p[i];
+    if (thesis_init) p0 = aii != 0.0 ? std::max(omega * scratch_.s[i] / aii, 0.0) : 0.0;
+    fluid_.p[i] = p0;
+    scratch_.p_over_rho2[i] = p0 * inv_rho2;
+  });
+
+  scratch_.err.resize(n);
+  int l = 0;
+  double avg = 0.0;
+  const double err_scale = 100.0 * dt / rho0;
+  do {
+    update_boundary_pressure();
+    compute_pressure_acceleration();
+    // (Ap)_i of Eq. 20 from the accelerations just computed, then the Jacobi update of
+    // Eq. 21 with negative pressures clamped, and the predicted compression of Eq. 23.
+    // Each particle reads neighbours' a_p and writes only its own pressure.
+    const double sum = parallel_sum(n, [&](Index i) {
+      const Vec2 ai = scratch_.a_p[i];
+      double ap = 0.0;
+      for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) ap += (ai - scratch_.a_p[ff_.j[k]]).dot(ff_.grad[k]);
+      ap = dt * (mass_ * ap + g2 * ai.dot(scratch_.grad_b[i]));
+      const double si = scratch_.s[i], aii = scratch_.a_ii[i];
+      const double p = aii != 0.0 ? std::max(fluid_.p[i] + omega / aii * (si - ap), 0.0) : 0.0;
+      fluid_.p[i] = p;
+      scratch_.p_over_rho2[i] = p / (fluid_.rho[i] * fluid_.rho[i]);
+      const double e = std::max(err_scale * (ap - si), 0.0);
+      scratch_.err[i] = e;
+      return e;
+    });
+    avg = n ? sum / n : 0.0;
+    ++l;
+  } while ((avg > s.tolerance_percent || l < s.min_iterations) && l < s.max_iterations);
+  st.iterations = l;
+  st.avg_error_percent = avg;
+  st.max_error_percent = parallel_max(n, 0.0, [&](Index i) { return scratch_.err[i]; });
+}
+
+// WCSPH (section 2.3.1): p_i = max(k (rho_i / rho0 - 1), 0), then Eq. 24.
+void Simulation::solve_pressure_wcsph(double dt, StepStats& st) {
+  const Index n = fluid_.size();
+  const double rho0 = settings_.rest_density, k = settings_.stiffness;
+  prepare_boundary_terms(dt);
+  scratch_.p_over_rho2.resize(n);
+  parallel_for(n, [&](Index i) {
+    const double rho = fluid_.rho[i];
+    const double p = std::max(k * (rho / rho0 - 1.0), 0.0);
+    fluid_.p[i] = p;
+    scratch_.p_over_rho2[i] = p / (rho * rho);
+  });
+  update_boundary_pressure();
+  compute_pressure_acceleration();
+  st.iterations = 0;
+  st.avg_error_percent = st.density_error_percent;
+  st.max_error_percent =
+      parallel_max(n, 0.0, [&](Index i) { return compression_percent(fluid_.rho[i], rho0); });
+}
+
+// Semi-implicit Euler (Algorithm 1/2): v(t+dt) = v* + dt a_p, x(t+dt) = x + dt v(t+dt).
+void Simulation::integrate(double dt) {
+  parallel_for(fluid_.size(), [&](Index i) {
+    fluid_.v[i] += dt * scratch_.a_p[i];
+    fluid_.x[i] += dt * fluid_.v[i];
+  });
+}
+
+void Simulation::check_stability(const StepStats& st) const {
+  auto fail = [&](const std::string& cause) {
+    std::ostringstream os;
+    os << "unstable at step " << st.step << ", t = " << st.time << " s: " << cause;
+    throw SimulationUnstable(os.str());
+  };
+  for (Index i = 0; i < fluid_.size(); ++i) {
+    const Vec2& x = fluid_.x[i];
+    const Vec2& v = fluid_.v[i];
+    if (!x.allFinite() || !v.allFinite() || !std::isfinite(fluid_.p[i])) {
+      std::ostringstream os;
+      os << "fluid particle " << fluid_.id[i] << " has a non-finite position, velocity or pressure";
+      fail(os.str());
+    }
+    if ((x.array() < lost_min_.array()).any() || (x.array() > lost_max_.array()).any()) {
+      std::ostringstream os;
+      os << "fluid particle " << fluid_.id[i] << " at (" << x.x() << ", " << x.y()
+         << ") left the scene's bounds by more than stability.bounds_margin = " << scene_.limits.bounds_margin
+         << " scene sizes";
+      fail(os.str());
+    }
+  }
+  if (st.density_error_percent > scene_.limits.max_error_percent) {
+    std::ostringstream os;
+    os << "average compression error " << st.density_error_percent
+       << "% exceeds stability.max_error_percent = " << scene_.limits.max_error_percent << "%";
+    fail(os.str());
+  }
+}
+
+}  // namespace sluice

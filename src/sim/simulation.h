@@ -1,0 +1,107 @@
+#pragma once
+// One 2D SPH simulation: fluid and boundary particles, neighbour search, the IISPH
+// (chapter 3, Algorithm 2) or WCSPH (section 2.3.1) pressure solver, boundary
+// handling of chapter 4, and time control landing exactly on frame times.
+// No globals: several simulations can coexist in one process.
+#include <stdexcept>
+#include <string>
+
+#include "scene/scene.h"
+#include "sim/kernel.h"
+#include "sim/neighbors.h"
+#include "sim/particles.h"
+#include "sim/settings.h"
+#include "sim/stats.h"
+
+namespace sluice {
+
+// A run that went unstable: NaN/Inf, a particle far outside the scene, or a
+// compression error above the limit. what() names the step, time and cause.
+class SimulationUnstable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Per-step scratch of the pressure solvers ("hot" arrays, reused between steps).
+struct SolverScratch {
+  std::vector<Vec2> a_p;        // pressure acceleration (Eq. 11/24)
+  std::vector<Vec2> grad_b;     // sum_b m_b grad W_ib, fixed within a step
+  std::vector<double> a_ii;     // diagonal (Eq. 22/26)
+  std::vector<double> s;        // source term (Eq. 19)
+  std::vector<double> err;      // predicted compression of Eq. 23 [%]
+  std::vector<double> p_over_rho2;   // p_i / rho_i^2 of fluid particles
+  std::vector<double> pb_over_rho2;  // p_b / rho0^2 of boundary particles
+  std::vector<double> ext_wsum;      // sum_f W_bf of each boundary particle (Eq. 25 denominator)
+  std::vector<double> ext_gravity;   // g . sum_f rho_f x_bf W_bf (Eq. 25 hydrostatic term)
+};
+
+double lattice_kernel_sum(const CubicSpline2D& kernel);
+
+class Simulation {
+ public:
+  explicit Simulation(const Scene& scene);
+
+  // Advances by one time step (Algorithm 2 for IISPH) and returns its statistics.
+  // Throws SimulationUnstable when the state is no longer valid.
+  StepStats step();
+
+  bool finished() const { return time_ >= scene_.time.duration; }
+  double time() const { return time_; }
+  long steps() const { return step_; }
+  Index frame() const { return frame_; }           // last frame index reached (0 at t = 0)
+  Index frame_count() const { return last_frame_; } // index of the final frame
+
+  const Scene& scene() const { return scene_; }
+  const FluidParticles& fluid() const { return fluid_; }
+  const BoundaryParticles& boundary() const { return boundary_; }
+  const CubicSpline2D& kernel() const { return kernel_; }
+  double fluid_mass() const { return mass_; }
+
+  // Test and benchmark hooks.
+  void set_brute_force_neighbors(bool on) { brute_force_ = on; }
+  SolverSettings& solver_settings() { return settings_; }
+
+  // Density (Eq. 13 with the boundary term of section 4.1) of every fluid particle,
+  // computed from the current positions (for tests and exports).
+  void recompute_density();
+
+ private:
+  // Phases of a step, in the order of Algorithm 2.
+  double choose_time_step() const;
+  void find_neighbors_phase();
+  void compute_density();                 // Eq. 13 + section 4.1
+  void apply_nonpressure(double dt);      // Eq. 12 + gravity: v* = v + dt (a_v + g)
+  void solve_pressure_iisph(double dt, StepStats& st);
+  void solve_pressure_wcsph(double dt, StepStats& st);
+  void integrate(double dt);              // semi-implicit Euler (Algorithm 1, last loop)
+  void check_stability(const StepStats& st) const;
+  void reorder_fluid();
+
+  // Building blocks of the pressure solvers.
+  void prepare_boundary_terms(double dt);     // grad_b, Eq. 25 weights
+  void update_boundary_pressure();            // Eq. 25 / 4.2.2 / 4.2.3 -> pb_over_rho2
+  void compute_pressure_acceleration();       // Eq. 24 -> a_p
+
+  void compute_boundary_volumes();            // section 4.1
+
+  Scene scene_;
+  SolverSettings settings_;
+  CubicSpline2D kernel_;
+  double mass_;  // fluid particle mass rho0 h^2 [kg/m]
+
+  FluidParticles fluid_;
+  BoundaryParticles boundary_;
+
+  SpatialHashGrid fluid_grid_, boundary_grid_;
+  NeighborLists ff_, fb_, bf_;  // fluid-fluid, fluid-boundary, boundary-fluid (transpose of fb)
+  SolverScratch scratch_;
+  bool brute_force_ = false;
+
+  double time_ = 0;
+  long step_ = 0;
+  Index frame_ = 0;
+  Index last_frame_ = 0;
+  Vec2 lost_min_, lost_max_;  // a particle outside this box is lost (instability)
+};
+
+}  // namespace sluice

@@ -1,0 +1,12 @@
+#pragma once
+// Basic numeric types shared by the whole simulation library.
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace sluice {
+
+using Vec2 = Eigen::Vector2d;
+using Index = std::int32_t;
+
+}  // namespace sluice
