@@ -4,24 +4,54 @@
 #include <bit>
 #include <numeric>
 
+#include <omp.h>
+
 #include "sim/kernel.h"
 #include "sim/parallel.h"
 
 namespace sluice {
 
-void SpatialHashGrid::build(const std::vector<Vec2>& points, double cell_size) {
+void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius) {
   const size_t n = points.size();
-  inv_cell_ = 1.0 / cell_size;
-  const std::uint32_t buckets = std::bit_ceil(static_cast<std::uint32_t>(std::max<size_t>(2 * n, 64)));
-  mask_ = buckets - 1;
-  start_.assign(buckets + 1, 0);
+  points_ = &points;
+  // Cells slightly larger than radius / kReach: x * inv_cell_ is rounded, and two points
+  // closer than `radius` must never land kReach + 1 cells apart (e.g. 12.8 and 12.9 with
+  // radius 0.1: 255.99999999999997 and 258 after scaling by 20).
+  inv_cell_ = static_cast<double>(kReach) / (radius * (1.0 + 1e-6));
   key_.resize(n);
-  // Counting sort by bucket: serial, O(n), deterministic.
-  for (size_t i = 0; i < n; ++i) {
-    key_[i] = bucket(cell_coord(points[i].x()), cell_coord(points[i].y()));
-    ++start_[key_[i] + 1];
+  std::uint32_t cells = 0;
+  dense_ = false;
+  if (n > 0) {
+    double minx = points[0].x(), maxx = minx, miny = points[0].y(), maxy = miny;
+    for (const Vec2& p : points) {
+      minx = std::min(minx, p.x());
+      maxx = std::max(maxx, p.x());
+      miny = std::min(miny, p.y());
+      maxy = std::max(maxy, p.y());
+    }
+    x0_ = cell_coord(minx);
+    y0_ = cell_coord(miny);
+    const double nx = static_cast<double>(cell_coord(maxx) - x0_ + 1), ny = static_cast<double>(cell_coord(maxy) - y0_ + 1);
+    // Dense while the cell array stays small against the points or in absolute terms
+    // (4M cells, 16 MB); a box that a few stray points blow up falls back to hashing.
+    dense_ = nx * ny <= std::max(4.0 * static_cast<double>(n) + 4096.0, 4194304.0);
+    if (dense_) {
+      nx_ = static_cast<std::int64_t>(nx);
+      ny_ = static_cast<std::int64_t>(ny);
+      cells = static_cast<std::uint32_t>(nx_ * ny_);
+      for (size_t i = 0; i < n; ++i)
+        key_[i] = static_cast<std::uint32_t>((cell_coord(points[i].y()) - y0_) * nx_ + (cell_coord(points[i].x()) - x0_));
+    }
   }
-  for (std::uint32_t b = 0; b < buckets; ++b) start_[b + 1] += start_[b];
+  if (!dense_) {
+    cells = std::bit_ceil(static_cast<std::uint32_t>(std::max<size_t>(2 * n, 64)));
+    mask_ = cells - 1;
+    for (size_t i = 0; i < n; ++i) key_[i] = bucket(cell_coord(points[i].x()), cell_coord(points[i].y()));
+  }
+  // Counting sort by cell: serial, O(n), deterministic.
+  start_.assign(static_cast<size_t>(cells) + 1, 0);
+  for (size_t i = 0; i < n; ++i) ++start_[key_[i] + 1];
+  for (std::uint32_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
   entries_.resize(n);
   pos_.resize(n);
   std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
@@ -32,6 +62,9 @@ void SpatialHashGrid::build(const std::vector<Vec2>& points, double cell_size) {
   }
 }
 
+// One query per particle: each thread lists the pairs of a contiguous chunk of queries
+// into its own buffer; the chunks are then copied into place after a prefix sum. The
+// result does not depend on the number of threads.
 void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid,
                     const CubicSpline2D& kernel, bool exclude_self, PairCache cache,
                     NeighborLists& out) {
@@ -39,32 +72,29 @@ void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid,
   const double radius = kernel.support();
   out.offset.resize(static_cast<size_t>(n) + 1);
   out.offset[0] = 0;
-  // Pass 1: count. Pass 2: fill. Each query writes only its own slots.
-  parallel_for(n, [&](Index i) {
-    Index c = 0;
-    grid.for_each_within(query[i], radius, [&](Index j, const Vec2&) { c += !(exclude_self && j == i); });
-    out.offset[i + 1] = c;
-  });
+  const int nchunks = std::max(1, omp_get_max_threads());
+  out.chunks.resize(static_cast<size_t>(nchunks));
+  auto chunk_begin = [&](int c) { return static_cast<Index>(static_cast<long long>(n) * c / nchunks); };
+#pragma omp parallel for schedule(static, 1)
+  for (int c = 0; c < nchunks; ++c) {
+    NeighborLists::Chunk& buf = out.chunks[static_cast<size_t>(c)];
+    buf.j.clear();
+    for (Index i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
+      const size_t before = buf.j.size();
+      grid.for_each_within(query[i], radius, [&](Index j, const Vec2&) {
+        if (!(exclude_self && j == i)) buf.j.push_back(j);
+      });
+      out.offset[i + 1] = static_cast<Index>(buf.j.size() - before);
+    }
+  }
   for (Index i = 0; i < n; ++i) out.offset[i + 1] += out.offset[i];
-  const size_t pairs = static_cast<size_t>(out.offset[n]);
-  out.j.resize(pairs);
-  if (cache.grad) out.grad.resize(pairs);
-  if (cache.w) out.w.resize(pairs);
-  parallel_for(n, [&](Index i) {
-    Index k = out.offset[i];
-    const Vec2 xi = query[i];
-    grid.for_each_within(xi, radius, [&](Index j, const Vec2& xj) {
-      if (exclude_self && j == i) return;
-      out.j[k] = j;
-      if (cache.grad || cache.w) {
-        const Vec2 r = xi - xj;
-        const double d = r.norm();
-        if (cache.grad) out.grad[k] = r * kernel.dWdr_over_r(d);
-        if (cache.w) out.w[k] = kernel.W(d);
-      }
-      ++k;
-    });
-  });
+  out.j.resize(static_cast<size_t>(out.offset[n]));
+#pragma omp parallel for schedule(static, 1)
+  for (int c = 0; c < nchunks; ++c) {
+    const std::vector<Index>& buf = out.chunks[static_cast<size_t>(c)].j;
+    std::copy(buf.begin(), buf.end(), out.j.begin() + out.offset[chunk_begin(c)]);
+  }
+  fill_pair_cache(query, grid.points(), kernel, cache, out);
 }
 
 void find_neighbors_brute_force(const std::vector<Vec2>& query, const std::vector<Vec2>& points,
@@ -130,8 +160,9 @@ namespace sluice {
 void fill_pair_cache(const std::vector<Vec2>& query, const std::vector<Vec2>& points,
                      const CubicSpline2D& kernel, PairCache cache, NeighborLists& lists) {
   const Index n = static_cast<Index>(query.size());
-  if (cache.grad) lists.grad.resize(lists.j.size());
-  if (cache.w) lists.w.resize(lists.j.size());
+  lists.grad.resize(cache.grad ? lists.j.size() : 0);
+  lists.w.resize(cache.w ? lists.j.size() : 0);
+  if (!cache.grad && !cache.w) return;
   parallel_for(n, [&](Index i) {
     for (Index k = lists.offset[i]; k < lists.offset[i + 1]; ++k) {
       const Vec2 r = query[i] - points[lists.j[k]];

@@ -1,9 +1,10 @@
 #pragma once
-// Neighbour search (thesis appendix 7): spatial hashing of a uniform grid with cell
-// size equal to the kernel support 2h. Works for any coordinates (no domain box):
-// cells are hashed into a table of 2^k buckets, built by a counting sort in O(n).
-// A query visits the buckets of the 3x3 cells around a point once each (two cells
-// may share a bucket) and filters candidates by distance.
+// Neighbour search (thesis appendix 7): particles binned into a uniform grid of cell
+// size h (half the kernel support 2h), built by a counting sort in O(n). The grid is
+// dense over the points' bounding box when that box holds at most max(4n, 4M) cells,
+// and each of the five cell rows around a query is then one contiguous range of
+// entries. Otherwise (a few points far away) cells are hashed into 2^k buckets, so
+// any coordinates work without a domain box.
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -13,8 +14,8 @@
 namespace sluice {
 
 // Neighbour lists in compressed-row form: the neighbours of particle i are
-// j[offset[i] .. offset[i+1]). Order is deterministic (bucket order, then the order
-// particles had when the grid was built). Per pair, W and grad W(x_i - x_j) are cached.
+// j[offset[i] .. offset[i+1]). Order is deterministic (grid order of the points, whatever
+// the thread count). Per pair, W and grad W(x_i - x_j) can be cached.
 struct NeighborLists {
   std::vector<Index> offset;  // size n + 1
   std::vector<Index> j;
@@ -23,52 +24,86 @@ struct NeighborLists {
 
   Index count(Index i) const { return offset[i + 1] - offset[i]; }
   Index pairs() const { return offset.empty() ? 0 : offset.back(); }
+
+  // Per-thread scratch of find_neighbors (pairs of a contiguous chunk of queries).
+  struct Chunk {
+    std::vector<Index> j;
+  };
+  std::vector<Chunk> chunks;
 };
 
 class SpatialHashGrid {
  public:
-  // Bins `points` into cells of size `cell_size`. The points are copied in bucket
-  // order so that queries read memory linearly.
-  void build(const std::vector<Vec2>& points, double cell_size);
+  // Bins `points` for queries of radius up to `radius`. The points are copied in cell
+  // order so that queries read memory linearly. The grid keeps a reference to `points`
+  // (see points()); it is valid while they are neither moved nor destroyed.
+  void build(const std::vector<Vec2>& points, double radius);
+  const std::vector<Vec2>& points() const { return *points_; }
 
-  // Calls f(j, x_j) for every point j with |p - x_j| < radius (radius <= cell size).
+  // Calls f(j, x_j) for every point j with |p - x_j| < radius (radius <= build radius).
   template <class F>
   void for_each_within(const Vec2& p, double radius, F&& f) const {
     if (entries_.empty()) return;
     const double r2 = radius * radius;
     const std::int64_t cx = cell_coord(p.x()), cy = cell_coord(p.y());
-    std::uint32_t seen[9];
+    auto visit = [&](std::uint32_t begin, std::uint32_t end) {
+      for (std::uint32_t e = begin; e < end; ++e) {
+        const Vec2& q = pos_[e];
+        const double dx = p.x() - q.x(), dy = p.y() - q.y();
+        if (dx * dx + dy * dy < r2) f(entries_[e], q);
+      }
+    };
+    if (dense_) {
+      const std::int64_t c0 = std::max<std::int64_t>(cx - kReach - x0_, 0);
+      const std::int64_t c1 = std::min<std::int64_t>(cx + kReach - x0_, nx_ - 1);
+      if (c0 > c1) return;
+      for (std::int64_t row = cy - kReach - y0_; row <= cy + kReach - y0_; ++row) {
+        if (row < 0 || row >= ny_) continue;
+        const std::int64_t base = row * nx_;
+        visit(start_[base + c0], start_[base + c1 + 1]);
+      }
+      return;
+    }
+    constexpr int kCells = (2 * kReach + 1) * (2 * kReach + 1);
+    std::uint32_t seen[kCells];
     int nseen = 0;
-    for (std::int64_t dy = -1; dy <= 1; ++dy) {
-      for (std::int64_t dx = -1; dx <= 1; ++dx) {
+    for (std::int64_t dy = -kReach; dy <= kReach; ++dy) {
+      for (std::int64_t dx = -kReach; dx <= kReach; ++dx) {
         const std::uint32_t b = bucket(cx + dx, cy + dy);
         bool dup = false;
         for (int s = 0; s < nseen; ++s) dup |= (seen[s] == b);
-        if (dup) continue;
+        if (dup) continue;  // two cells of the block share a bucket: visit it once
         seen[nseen++] = b;
-        for (std::uint32_t e = start_[b]; e < start_[b + 1]; ++e) {
-          const Vec2& q = pos_[e];
-          const double ddx = p.x() - q.x(), ddy = p.y() - q.y();
-          if (ddx * ddx + ddy * ddy < r2) f(entries_[e], q);
-        }
+        visit(start_[b], start_[b + 1]);
       }
     }
   }
 
-  std::int64_t cell_coord(double v) const { return static_cast<std::int64_t>(std::floor(v * inv_cell_)); }
+  Index size() const { return static_cast<Index>(entries_.size()); }
+  bool dense() const { return dense_; }
+
+ private:
+  static constexpr std::int64_t kReach = 2;  // cells of size radius/2 on each side
+  // floor(v * inv_cell_) without a libm call (baseline x86-64 has no inline floor).
+  std::int64_t cell_coord(double v) const {
+    const double s = v * inv_cell_;
+    const auto t = static_cast<std::int64_t>(s);
+    return t - (s < static_cast<double>(t));
+  }
   std::uint32_t bucket(std::int64_t cx, std::int64_t cy) const {
     const std::uint64_t h = static_cast<std::uint64_t>(cx) * 73856093ULL ^ static_cast<std::uint64_t>(cy) * 19349663ULL;
     return static_cast<std::uint32_t>((h ^ (h >> 29)) & mask_);
   }
-  Index size() const { return static_cast<Index>(entries_.size()); }
 
- private:
+  const std::vector<Vec2>* points_ = nullptr;
   double inv_cell_ = 1.0;
-  std::uint32_t mask_ = 0;
-  std::vector<std::uint32_t> start_;  // bucket b holds entries [start_[b], start_[b+1])
-  std::vector<Index> entries_;        // point indices in bucket order
+  bool dense_ = false;
+  std::int64_t x0_ = 0, y0_ = 0, nx_ = 0, ny_ = 0;  // dense grid: first cell and size
+  std::uint32_t mask_ = 0;                         // hashed grid: buckets - 1
+  std::vector<std::uint32_t> start_;  // cell (or bucket) c holds entries [start_[c], start_[c+1])
+  std::vector<Index> entries_;        // point indices in cell order
   std::vector<Vec2> pos_;             // their positions, same order
-  std::vector<std::uint32_t> key_;    // scratch: bucket of each point
+  std::vector<std::uint32_t> key_;    // scratch: cell of each point
 };
 
 // Options of a neighbour list build.

@@ -136,15 +136,16 @@ StepStats Simulation::step() {
   const double dt = remaining / n_steps;
   st.dt = dt;
 
-  if (step_ % kReorderEvery == 0) reorder_fluid();
   {
+    // Algorithm 2's first loop: neighbours and density (with the periodic spatial sort).
     const Stopwatch t;
+    if (step_ % kReorderEvery == 0) reorder_fluid();
     find_neighbors_phase();
+    compute_density();
     st.ms_neighbors = t.ms();
   }
   {
     const Stopwatch t;
-    compute_density();
     const Index n = fluid_.size();
     const double rho0 = settings_.rest_density;
     st.density_error_percent =
@@ -201,33 +202,50 @@ double Simulation::choose_time_step() const {
 }
 
 void Simulation::find_neighbors_phase() {
-  const PairCache both{.grad = true, .w = true};
+  const PairCache none{};
   if (brute_force_) {
     find_neighbors_brute_force(fluid_.x, fluid_.x, kernel_.support(), true, ff_);
-    fill_pair_cache(fluid_.x, fluid_.x, kernel_, both, ff_);
     find_neighbors_brute_force(fluid_.x, boundary_.x, kernel_.support(), false, fb_);
-    fill_pair_cache(fluid_.x, boundary_.x, kernel_, both, fb_);
   } else {
     fluid_grid_.build(fluid_.x, kernel_.support());
-    find_neighbors(fluid_.x, fluid_grid_, kernel_, /*exclude_self=*/true, both, ff_);
-    find_neighbors(fluid_.x, boundary_grid_, kernel_, /*exclude_self=*/false, both, fb_);
+    find_neighbors(fluid_.x, fluid_grid_, kernel_, /*exclude_self=*/true, none, ff_);
+    find_neighbors(fluid_.x, boundary_grid_, kernel_, /*exclude_self=*/false, none, fb_);
   }
-  // Eq. 25 gathers over the fluid neighbours of each boundary particle.
-  if (settings_.boundary_pressure == BoundaryPressure::Extrapolation) transpose_neighbors(fb_, boundary_.size(), bf_);
 }
 
-// Eq. 13 with the boundary term of section 4.1:
+// One pass over all pairs: caches grad W for fluid and boundary pairs (and W for
+// boundary pairs, which Eq. 25 gathers again) and sums the density of Eq. 13 with the
+// boundary term of section 4.1:
 //   rho_i = sum_f m_f W_if + gamma2 sum_b m_b W_ib,  m_b = rho0 V_b.
 void Simulation::compute_density() {
   const double w0 = kernel_.W(0.0);
   const double rho0 = settings_.rest_density, g2 = settings_.gamma2;
+  ff_.grad.resize(static_cast<size_t>(ff_.pairs()));
+  fb_.grad.resize(static_cast<size_t>(fb_.pairs()));
+  fb_.w.resize(static_cast<size_t>(fb_.pairs()));
   parallel_for(fluid_.size(), [&](Index i) {
+    const Vec2 xi = fluid_.x[i];
+    double w, dw;
     double sf = w0;
-    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) sf += ff_.w[k];
+    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
+      const Vec2 r = xi - fluid_.x[ff_.j[k]];
+      kernel_.eval(r.norm(), w, dw);
+      sf += w;
+      ff_.grad[k] = dw * r;
+    }
     double sb = 0.0;
-    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) sb += boundary_.volume[fb_.j[k]] * fb_.w[k];
+    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
+      const Index b = fb_.j[k];
+      const Vec2 r = xi - boundary_.x[b];
+      kernel_.eval(r.norm(), w, dw);
+      sb += boundary_.volume[b] * w;
+      fb_.w[k] = w;
+      fb_.grad[k] = dw * r;
+    }
     fluid_.rho[i] = mass_ * sf + g2 * rho0 * sb;
   });
+  // Eq. 25 gathers over the fluid neighbours of each boundary particle.
+  if (settings_.boundary_pressure == BoundaryPressure::Extrapolation) transpose_neighbors(fb_, boundary_.size(), bf_);
 }
 
 // v* = v + dt (a_v + g) with the viscosity of Eq. 12 against fluid and boundary

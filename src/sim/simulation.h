@@ -69,7 +69,7 @@ class Simulation {
   // Phases of a step, in the order of Algorithm 2.
   double choose_time_step() const;
   void find_neighbors_phase();
-  void compute_density();                 // Eq. 13 + section 4.1
+  void compute_density();                 // grad W per pair, then Eq. 13 + section 4.1
   void apply_nonpressure(double dt);      // Eq. 12 + gravity: v* = v + dt (a_v + g)
   void solve_pressure_iisph(double dt, StepStats& st);
   void solve_pressure_wcsph(double dt, StepStats& st);

@@ -1,0 +1,485 @@
+// Physics of the simulation (src/sim/simulation.cpp) on small scenes built from inline
+// JSON: rest density, boundary volumes, a block at rest, hydrostatic pressure for every
+// solver and boundary method, IISPH convergence and containment in a dam break,
+// determinism, frame landing, the instability detector, brute force vs grid search.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+#include "sim/simulation.h"
+#include "test_util.h"
+
+namespace sluice {
+namespace {
+
+using test::scene_from_json;
+
+constexpr double kPi = 3.14159265358979323846;
+
+double max_speed(const Simulation& sim) {
+  double v = 0.0;
+  for (const Vec2& u : sim.fluid().v) v = std::max(v, u.norm());
+  return v;
+}
+
+// --- rest density ------------------------------------------------------------------
+
+TEST(Physics, RestDensityOnFilledLattice) {
+  const Scene scene = scene_from_json(R"({
+    "spacing": 0.02,
+    "solver": {"gravity": [0, 0], "rest_density": 1000},
+    "fluid": [{"shape": "rectangle", "min": [0.1, -0.3], "max": [0.7, 0.3]}]
+  })");
+  Simulation sim(scene);
+  sim.recompute_density();
+  const double h = scene.spacing, rho0 = 1000.0;
+  int interior = 0;
+  const FluidParticles& f = sim.fluid();
+  for (Index i = 0; i < f.size(); ++i) {
+    const Vec2 x = f.x[i];
+    const double edge = std::min({x.x() - 0.1, 0.7 - x.x(), x.y() + 0.3, 0.3 - x.y()});
+    if (edge <= 2.0 * h) continue;
+    ++interior;
+    // m = rho0 / lattice sum makes a full neighbourhood exactly rho0; what remains is
+    // round-off of a 13-term sum and of lattice positions (~1e-15); 1e-9 would still
+    // catch m = rho0 h^2 (8.6e-4 off) by many orders.
+    EXPECT_NEAR(f.rho[i] / rho0, 1.0, 1e-9) << "particle " << f.id[i];
+  }
+  EXPECT_EQ(interior, 26 * 26);  // 30 x 30 lattice minus the two rows within 2h of each side
+  // Surface particles see fewer neighbours: below rest density.
+  for (Index i = 0; i < f.size(); ++i)
+    if (std::abs(f.x[i].x() - 0.11) < 1e-9) {
+      EXPECT_LT(f.rho[i], 0.99 * rho0);
+    }
+  EXPECT_NEAR(sim.fluid_mass() * lattice_kernel_sum(sim.kernel()), rho0, 1e-9 * rho0);
+}
+
+// --- Akinci boundary volume -------------------------------------------------------------
+
+// Volumes of the samples of a long straight wall far from its ends (more than 2h).
+std::vector<double> interior_wall_volumes(int layers, double gamma1, double h) {
+  const std::string text = R"({"spacing": )" + std::to_string(h) + R"(, "solver": {"gamma1": )" +
+                           std::to_string(gamma1) +
+                           R"(}, "fluid": [{"shape": "rectangle", "min": [0.5, 0.5], "max": [0.6, 0.6]}],
+      "boundaries": [{"shape": "polyline", "points": [[0, 0], [2, 0]], "layers": )" +
+                           std::to_string(layers) + "}]}";
+  const Scene scene = scene_from_json(text);
+  Simulation sim(scene);
+  const BoundaryParticles& b = sim.boundary();
+  std::vector<double> v;
+  for (Index k = 0; k < b.size(); ++k)
+    if (b.x[k].x() > 3 * h && b.x[k].x() < 2.0 - 3 * h) v.push_back(b.volume[k]);
+  return v;
+}
+
+TEST(Physics, AkinciVolumeStraightWall) {
+  const double h = 0.02, gamma1 = 0.7;
+  const double alpha = 5.0 / (14.0 * kPi * h * h);
+  // One row at spacing h: self 4 alpha + two neighbours at h (alpha each); 2h is outside.
+  const double sum1 = 6.0 * alpha;
+  // Two rows h apart: add the sample across (alpha) and two diagonals at sqrt(2) h.
+  const double sum2 = sum1 + alpha * (1.0 + 2.0 * std::pow(2.0 - std::sqrt(2.0), 3));
+  EXPECT_NEAR(1.0 / (sum1 * h * h), 1.4661, 1e-4);  // the documented numbers, 4 digits
+  EXPECT_NEAR(1.0 / (sum2 * h * h), 1.1884, 1e-4);
+  for (int layers : {1, 2}) {
+    SCOPED_TRACE(layers);
+    const std::vector<double> v = interior_wall_volumes(layers, gamma1, h);
+    ASSERT_GT(v.size(), 90u * layers);
+    const double expected = gamma1 / (layers == 1 ? sum1 : sum2);
+    // Samples of a straight wall are uniform up to round-off of their positions
+    // (segment length / n): 1e-9 relative is far tighter than the 4 digits asked for.
+    for (double vb : v) EXPECT_NEAR(vb / expected, 1.0, 1e-9);
+  }
+}
+
+// --- block at rest -------------------------------------------------------------------------
+
+TEST(Physics, BlockAtRestStaysAtRest) {
+  const Scene scene = scene_from_json(R"({
+    "spacing": 0.02,
+    "solver": {"gravity": [0, 0]},
+    "time": {"dt": 1e-3, "duration": 1},
+    "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.4, 0.3]}],
+    "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.4, 0.5]}]
+  })");
+  ASSERT_EQ(scene.fluid_removed, 0);
+  ASSERT_EQ(scene.solver.gamma1, 0.84);  // the default under test
+  Simulation sim(scene);
+  double vmax = 0.0;
+  for (int s = 0; s < 50; ++s) {
+    sim.step();
+    vmax = std::max(vmax, max_speed(sim));
+  }
+  std::printf("[ measured ] block at rest: max speed over 50 steps %.3e m/s\n", vmax);
+  // Measured 2.8e-14 m/s (round-off). An inconsistent start moves the block within the
+  // 50 steps: m = rho0 h^2 0.11 m/s, gamma1 = 1 3.3 m/s, wall layer on the curve
+  // (surface_offset 0) 30 m/s; 1e-6 sits far between.
+  EXPECT_LT(vmax, 1e-6);
+}
+
+// --- hydrostatic column ---------------------------------------------------------------------
+
+struct HydroCase {
+  std::string name;
+  std::string solver;      // JSON members of "solver"
+  std::string time;        // JSON members of "time"
+  double bin_tol;          // on |<p>_bin / (rho0 g d_bin) - 1| for d in (3h, d_max)
+  double slope_tol;        // on |fitted dp/dd / (rho0 g) - 1| over the same range
+  bool zero_pressure_wall; // p_b = 0: the rows within 3h of the floor are checked apart
+};
+
+std::ostream& operator<<(std::ostream& os, const HydroCase& c) { return os << c.name; }
+
+class Hydrostatic : public ::testing::TestWithParam<HydroCase> {};
+
+// Box [0,0]-[0.4,0.6] without a lid, water [0,0]-[0.4,0.5], h = 0.02 (500 particles),
+// viscosity 0.01 to damp the sloshing. After 1.5 s the pressure of the particles away
+// from the side walls (by 3h) is averaged per depth bin (2h) over every step of the last
+// 0.5 s: a single step's IISPH pressure is noisy (see the tolerance note in the cases).
+TEST_P(Hydrostatic, PressureMatchesDepth) {
+  const HydroCase& c = GetParam();
+  const std::string text = R"({
+    "spacing": 0.02,
+    "solver": {"viscosity": 0.01, )" + c.solver + R"(},
+    "time": {"duration": 2, )" + c.time + R"(},
+    "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.4, 0.5]}],
+    "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.4, 0.6]}]
+  })";
+  const Scene scene = scene_from_json(text);
+  Simulation sim(scene);
+  const double h = scene.spacing, rho0 = scene.solver.rest_density, g = 9.81, W = 0.4;
+  const int nbins = 20;
+  std::vector<double> sp(nbins, 0.0), sd(nbins, 0.0);
+  std::vector<long> cnt(nbins, 0);
+  long steps = 0, capped = 0, samples = 0;
+  double surface = 0.0, floor_depth = 0.0;
+  while (!sim.finished()) {
+    const StepStats st = sim.step();
+    ++steps;
+    capped += st.iterations >= scene.solver.max_iterations;
+    if (st.time < 1.5) continue;
+    ++samples;
+    const FluidParticles& f = sim.fluid();
+    double top = -INFINITY;
+    for (const Vec2& x : f.x) top = std::max(top, x.y());
+    surface = top + 0.5 * h;
+    floor_depth = surface;  // the floor is at y = 0
+    for (Index i = 0; i < f.size(); ++i) {
+      const Vec2 x = f.x[i];
+      if (x.x() < 3 * h || x.x() > W - 3 * h) continue;
+      const double d = surface - x.y();
+      const int b = std::clamp(static_cast<int>(d / (2 * h)), 0, nbins - 1);
+      sp[b] += f.p[i];
+      sd[b] += d;
+      ++cnt[b];
+    }
+  }
+  ASSERT_GT(samples, 400);
+  // With p_b = 0 the floor pushes with half the force of a mirrored wall, so the rows
+  // next to it carry up to ~1.75 rho0 g d (section 4.2.3): they are checked apart.
+  const double d_max = c.zero_pressure_wall ? floor_depth - 3 * h : INFINITY;
+  double worst = 0.0, worst_d = 0.0, sxx = 0.0, sxy = 0.0, floor_ratio = 0.0;
+  for (int b = 0; b < nbins; ++b) {
+    if (cnt[b] == 0) continue;
+    const double d = sd[b] / cnt[b], p = sp[b] / cnt[b], ratio = p / (rho0 * g * d);
+    if (std::getenv("SLUICE_TEST_VERBOSE")) std::printf("  d = %.3f  <p>/(rho0 g d) = %.4f\n", d, ratio);
+    if (d > floor_depth - 2 * h) floor_ratio = std::max(floor_ratio, ratio);
+    if (d <= 3 * h || d >= d_max) continue;
+    sxx += cnt[b] * d * d;
+    sxy += cnt[b] * d * p;
+    if (std::abs(ratio - 1.0) > worst) {
+      worst = std::abs(ratio - 1.0);
+      worst_d = d;
+    }
+  }
+  const double slope_err = std::abs(sxy / sxx / (rho0 * g) - 1.0);
+  std::printf("[ measured ] hydrostatic %s: %ld steps (%ld at max_iterations), surface %.4f m, end max speed "
+              "%.3e m/s, worst bin error %.4f at d = %.3f m, slope error %.4f, floor bin ratio %.3f\n",
+              c.name.c_str(), steps, capped, surface, max_speed(sim), worst, worst_d, slope_err, floor_ratio);
+  EXPECT_LT(worst, c.bin_tol);
+  EXPECT_LT(slope_err, c.slope_tol);
+  EXPECT_GT(surface, 0.48);  // the column neither collapses nor boils: the surface stays within h
+  EXPECT_LT(surface, 0.52);
+  if (c.zero_pressure_wall) {
+    EXPECT_GT(floor_ratio, 1.3);  // the documented drawback of p_b = 0 (measured 1.74-1.75)
+  }
+}
+
+// IISPH runs at tolerance 0.01% instead of the default 0.1%: at dt = 1e-3 a step without
+// half of the hydrostatic pressure compresses a 0.5 m column by only ~g dt^2 / h = 0.05%,
+// below 0.1%, so at the default the per-step pressure swings between ~0.5 and ~2.4 times
+// hydrostatic and even its 0.5 s average is 17% high (measured, see the report).
+// Tolerances, from errors measured at h = 0.02 (worst bin / slope):
+//   IISPH extrapolation 5.5% / 3.2%, mirroring 6.4% / 3.5%, zero 3.7% / 2.9% (floor rows
+//   excluded); WCSPH (k = 5e5, 1% compression at the floor) 3.6% / 1.6%, 3.2% / 2.0%,
+//   1.6% / 0.9%. The worst bins are the rows next to the floor, where the boundary model
+//   dominates. Bins: 10% for IISPH and 6% for WCSPH; slope: 6% and 4% (about 1.7-2x
+//   margin over the measurement). For scale: gamma3 = 0.5 puts the floor bin 86% off,
+//   and IISPH at its default 0.1% tolerance is 20% / 17% off.
+INSTANTIATE_TEST_SUITE_P(
+    Physics, Hydrostatic,
+    ::testing::Values(
+        HydroCase{"iisph_extrapolation", R"("type": "iisph", "tolerance": 0.01, "boundary_pressure": "extrapolation")",
+                  R"("dt": 1e-3)", 0.10, 0.06, false},
+        HydroCase{"iisph_mirroring", R"("type": "iisph", "tolerance": 0.01, "boundary_pressure": "mirroring")",
+                  R"("dt": 1e-3)", 0.10, 0.06, false},
+        HydroCase{"iisph_zero", R"("type": "iisph", "tolerance": 0.01, "boundary_pressure": "zero")", R"("dt": 1e-3)",
+                  0.10, 0.06, true},
+        HydroCase{"wcsph_extrapolation", R"("type": "wcsph", "stiffness": 5e5, "boundary_pressure": "extrapolation")",
+                  R"("dt": 2e-4)", 0.06, 0.04, false},
+        HydroCase{"wcsph_mirroring", R"("type": "wcsph", "stiffness": 5e5, "boundary_pressure": "mirroring")",
+                  R"("dt": 2e-4)", 0.06, 0.04, false},
+        HydroCase{"wcsph_zero", R"("type": "wcsph", "stiffness": 5e5, "boundary_pressure": "zero")", R"("dt": 2e-4)",
+                  0.06, 0.04, true}),
+    [](const ::testing::TestParamInfo<HydroCase>& info) { return info.param.name; });
+
+// --- dam break: IISPH convergence and containment --------------------------------------------
+
+// Tank 2 x 2 m without a lid, water column 0.5 x 1 m, h = 0.02 (1250 particles), 0.4 s
+// with the adaptive CFL step. Run once, shared by the tests below.
+struct DamBreakRun {
+  Scene scene;
+  std::vector<StepStats> stats;
+  long escapes = 0;           // particle-steps outside the tank (margin h/2)
+  std::string first_escape;   // description of the first one
+};
+
+const DamBreakRun& dam_break() {
+  static const DamBreakRun run = [] {
+    DamBreakRun r;
+    r.scene = scene_from_json(R"({
+      "spacing": 0.02,
+      "time": {"duration": 0.4},
+      "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.5, 1]}],
+      "boundaries": [{"shape": "box", "min": [0, 0], "max": [2, 2]}]
+    })");
+    Simulation sim(r.scene);
+    const double m = 0.5 * r.scene.spacing;
+    while (!sim.finished()) {
+      r.stats.push_back(sim.step());
+      const FluidParticles& f = sim.fluid();
+      for (Index i = 0; i < f.size(); ++i) {
+        const Vec2 x = f.x[i];
+        if (x.x() < -m || x.x() > 2.0 + m || x.y() < -m) {
+          if (r.escapes++ == 0) {
+            r.first_escape = "particle " + std::to_string(f.id[i]) + " at (" + std::to_string(x.x()) + ", " +
+                             std::to_string(x.y()) + ") at t = " + std::to_string(sim.time());
+          }
+        }
+      }
+    }
+    return r;
+  }();
+  return run;
+}
+
+TEST(Physics, DamBreakIisphMeetsTolerance) {
+  const DamBreakRun& r = dam_break();
+  const SolverSettings& s = r.scene.solver;
+  ASSERT_GT(r.stats.size(), 300u);  // 0.4 s at dt <= 1e-3 (plus frame landings)
+  long capped = 0;
+  int max_iter = 0;
+  double worst = 0.0;
+  for (const StepStats& st : r.stats) {
+    max_iter = std::max(max_iter, st.iterations);
+    EXPECT_GE(st.iterations, s.min_iterations);
+    if (st.iterations >= s.max_iterations) {
+      ++capped;
+      continue;
+    }
+    worst = std::max(worst, st.avg_error_percent);
+    // The loop exits below max_iterations only once the average error is at most the
+    // tolerance (no slack: it is the loop's own exit condition).
+    EXPECT_LE(st.avg_error_percent, s.tolerance_percent) << "step " << st.step;
+  }
+  std::printf("[ measured ] dam break: %zu steps, max iterations %d, steps at max_iterations %ld, worst avg error %.4f%%\n",
+              r.stats.size(), max_iter, capped, worst);
+  EXPECT_EQ(capped, 0);
+}
+
+TEST(Physics, DamBreakStaysInTank) {
+  const DamBreakRun& r = dam_break();
+  // Walls at x = 0, x = 2 and y = 0; the fluid keeps h/2 off them, so crossing a wall
+  // by more than h/2 means a particle went through the boundary.
+  EXPECT_EQ(r.escapes, 0) << "first: " << r.first_escape;
+}
+
+// --- determinism -------------------------------------------------------------------------
+
+// 2400 particles (h = 0.01), more than two reduction blocks of 1024, so that thread
+// counts really split the work; 40 steps cross two spatial reorders (every 16 steps).
+std::uint64_t run_hash(const std::string& solver, double dt, int threads, int steps) {
+  test::ThreadCount t(threads);
+  const Scene scene = scene_from_json(R"({
+    "spacing": 0.01,
+    "solver": {)" + solver + R"(},
+    "time": {"dt": )" + std::to_string(dt) + R"(, "duration": 1},
+    "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.8]}],
+    "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.8, 1.0]}]
+  })");
+  Simulation sim(scene);
+  for (int s = 0; s < steps; ++s) sim.step();
+  EXPECT_GT(max_speed(sim), 0.01);  // the column is moving: not a trivially static state
+  return test::state_hash(sim);
+}
+
+struct DeterminismCase {
+  std::string name, solver;
+  double dt;
+  int steps;
+};
+
+std::ostream& operator<<(std::ostream& os, const DeterminismCase& c) { return os << c.name; }
+
+class Determinism : public ::testing::TestWithParam<DeterminismCase> {};
+
+TEST_P(Determinism, SameBitsForThreadsAndRuns) {
+  const DeterminismCase& c = GetParam();
+  const std::uint64_t a = run_hash(c.solver, c.dt, 1, c.steps);
+  const std::uint64_t b = run_hash(c.solver, c.dt, 2, c.steps);
+  const std::uint64_t b2 = run_hash(c.solver, c.dt, 2, c.steps);
+  const std::uint64_t d = run_hash(c.solver, c.dt, 3, c.steps);
+  EXPECT_EQ(a, b) << "1 vs 2 threads";
+  EXPECT_EQ(b, b2) << "two runs with 2 threads";
+  EXPECT_EQ(a, d) << "1 vs 3 threads";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Physics, Determinism,
+    ::testing::Values(DeterminismCase{"iisph", R"("type": "iisph")", 2e-3, 40},
+                      DeterminismCase{"iisph_viscosity_mirroring",
+                                      R"("type": "iisph", "viscosity": 0.01, "boundary_pressure": "mirroring")", 2e-3, 40},
+                      DeterminismCase{"wcsph", R"("type": "wcsph", "stiffness": 5e5)", 2e-4, 60},
+                      DeterminismCase{"wcsph_viscosity", R"("type": "wcsph", "stiffness": 5e5, "viscosity": 0.01)", 2e-4,
+                                      60}),
+    [](const ::testing::TestParamInfo<DeterminismCase>& info) { return info.param.name; });
+
+// --- frame landing -----------------------------------------------------------------------
+
+const char* kSmallDamBreak = R"({
+  "spacing": 0.02,
+  "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.2, 0.4]}],
+  "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.6, 0.6]}]
+})";
+
+TEST(Physics, FixedStepLandsOnFrames) {
+  const Scene scene = scene_from_json(kSmallDamBreak, {"time.fps=30", "time.dt=0.0007", "time.duration=0.25"});
+  Simulation sim(scene);
+  EXPECT_EQ(sim.frame_count(), 8);  // ceil(0.25 * 30)
+  Index expected_frame = 1;
+  double prev = 0.0, longest = 0.0;
+  long steps = 0;
+  while (!sim.finished()) {
+    const StepStats st = sim.step();
+    ++steps;
+    longest = std::max(longest, st.dt);
+    EXPECT_LE(st.dt, 0.0007) << "step " << st.step;  // steps are only ever shortened
+    EXPECT_GT(st.time, prev);
+    EXPECT_EQ(st.time, sim.time());
+    prev = st.time;
+    if (st.frame >= 0) {
+      ASSERT_EQ(st.frame, expected_frame);
+      // Frame times are exact: k / fps, not an accumulated sum of steps. The last frame
+      // is cut at the duration.
+      const double t = std::min(static_cast<double>(st.frame) / 30.0, 0.25);
+      EXPECT_EQ(st.time, t) << "frame " << st.frame;
+      EXPECT_EQ(sim.frame(), st.frame);
+      ++expected_frame;
+    } else {
+      EXPECT_LT(st.time, static_cast<double>(expected_frame) / 30.0);
+    }
+  }
+  EXPECT_EQ(expected_frame, 9);
+  EXPECT_EQ(sim.time(), 0.25);
+  // 1/30 s / 0.0007 s = 47.6, so 48 steps of 0.000694 s per frame; 0.25 s is 7.5 frames.
+  EXPECT_EQ(steps, 7 * 48 + 24);
+  std::printf("[ measured ] fixed dt frames: %ld steps, longest %.10g s\n", steps, longest);
+}
+
+TEST(Physics, AdaptiveStepLandsOnFrames) {
+  const Scene scene = scene_from_json(kSmallDamBreak, {"time.fps=30", "time.duration=0.3", "time.dt_max=0.004"});
+  ASSERT_EQ(scene.time.dt, 0.0);
+  Simulation sim(scene);
+  Index expected_frame = 1;
+  double longest = 0.0, shortest = INFINITY;
+  while (!sim.finished()) {
+    const StepStats st = sim.step();
+    longest = std::max(longest, st.dt);
+    shortest = std::min(shortest, st.dt);
+    EXPECT_LE(st.dt, 0.004) << "step " << st.step;
+    // The CFL condition of Eq. 14 with the velocities after the step may exceed lambda by
+    // what one step's acceleration adds; 2 lambda bounds it generously.
+    EXPECT_LE(st.max_cfl, 2 * 0.4) << "step " << st.step;
+    if (st.frame >= 0) {
+      ASSERT_EQ(st.frame, expected_frame);
+      EXPECT_EQ(st.time, static_cast<double>(st.frame) / 30.0);
+      ++expected_frame;
+    }
+  }
+  EXPECT_EQ(expected_frame, 10);
+  std::printf("[ measured ] adaptive frames: dt in [%.4g, %.4g] s\n", shortest, longest);
+  EXPECT_LT(shortest, longest);  // the step did adapt to the flow
+}
+
+// --- instability detector ------------------------------------------------------------------
+
+TEST(Physics, InstabilityIsDetected) {
+  const Scene scene = scene_from_json(kSmallDamBreak, {"solver.type=wcsph", "solver.stiffness=1e7", "time.dt=5e-3"});
+  Simulation sim(scene);
+  std::string message;
+  int steps = 0;
+  try {
+    for (; steps < 200; ++steps) sim.step();
+  } catch (const SimulationUnstable& e) {
+    message = e.what();
+  }
+  std::printf("[ measured ] instability after %d steps: %s\n", steps, message.c_str());
+  ASSERT_FALSE(message.empty()) << "no SimulationUnstable in 200 steps";
+  EXPECT_NE(message.find("unstable at step"), std::string::npos) << message;
+  const bool has_cause = message.find("non-finite") != std::string::npos ||
+                         message.find("left the scene") != std::string::npos ||
+                         message.find("compression error") != std::string::npos ||
+                         message.find("dt_min") != std::string::npos;
+  EXPECT_TRUE(has_cause) << message;
+}
+
+// --- brute force vs grid -------------------------------------------------------------------
+
+TEST(Physics, BruteForceMatchesGrid) {
+  const Scene scene = scene_from_json(kSmallDamBreak, {"time.dt=0.002"});
+  Simulation grid(scene), brute(scene);
+  brute.set_brute_force_neighbors(true);
+  for (int s = 0; s < 40; ++s) {
+    grid.step();
+    brute.step();
+  }
+  ASSERT_GT(max_speed(grid), 0.05);
+  const test::OrderedState a = test::ordered_state(grid), b = test::ordered_state(brute);
+  double dx = 0.0, dv = 0.0, dp = 0.0, pmax = 0.0;
+  for (size_t i = 0; i < a.x.size(); ++i) {
+    dx = std::max(dx, (a.x[i] - b.x[i]).norm());
+    dv = std::max(dv, (a.v[i] - b.v[i]).norm());
+    dp = std::max(dp, std::abs(a.p[i] - b.p[i]));
+    pmax = std::max(pmax, std::abs(a.p[i]));
+  }
+  std::printf("[ measured ] brute vs grid after 40 steps: max |dx| %.3e m, |dv| %.3e m/s, |dp| %.3e (max p %.3e), "
+              "bitwise %s\n",
+              dx, dv, dp, pmax, test::state_hash(grid) == test::state_hash(brute) ? "equal" : "different");
+  // Not bitwise: the brute-force lists are sorted by index, the grid's are in cell
+  // order, so every neighbour sum is added in a different order. Measured after 40 steps:
+  // |dx| 2.9e-16 m, |dv| 3.9e-14 m/s, |dp| 1.6e-9 of p up to 2e3 (8e-13 relative). The
+  // bounds leave ~1000x for growth of round-off; a missing or extra neighbour (W ~ 1e2
+  // near q = 1.9) would change a pressure by far more than 1e-9 relative.
+  EXPECT_LT(dx, 1e-12);
+  EXPECT_LT(dv, 1e-10);
+  EXPECT_LT(dp, 1e-9 * pmax);
+}
+
+}  // namespace
+}  // namespace sluice
