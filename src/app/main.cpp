@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
 
   SimulateOptions sim;
   CLI::App* simulate = app.add_subcommand("simulate", "Simulate a scene; write stats.csv, summary.json and exports");
-  simulate->add_option("scene", sim.scene, "Scene file (JSON)")->required()->check(CLI::ExistingFile);
+  simulate->add_option("scene", sim.scene, "Scene file (JSON)")->required();
   simulate->add_option("-o,--output", sim.output_dir, "Output directory (default: the scene's output.directory)");
   simulate->add_option("--duration", sim.duration, "Simulated seconds (overrides time.duration)")
       ->check(CLI::PositiveNumber);
@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
 
   BenchOptions bench;
   CLI::App* benchcmd = app.add_subcommand("bench", "Time scenes; print a table and write CSV");
-  benchcmd->add_option("scenes", bench.scenes, "Scene files")->required()->check(CLI::ExistingFile);
+  benchcmd->add_option("scenes", bench.scenes, "Scene files")->required();
   benchcmd->add_option("--steps", bench.steps, "Steps per run (0: the whole duration)")->check(CLI::NonNegativeNumber);
   benchcmd->add_option("--repeat", bench.repeat, "Runs per scene; the median is reported")
       ->check(CLI::PositiveNumber);

@@ -78,21 +78,20 @@ void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid,
 #pragma omp parallel for schedule(static, 1)
   for (int c = 0; c < nchunks; ++c) {
     NeighborLists::Chunk& buf = out.chunks[static_cast<size_t>(c)];
-    buf.j.clear();
+    size_t used = 0;
     for (Index i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
-      const size_t before = buf.j.size();
-      grid.for_each_within(query[i], radius, [&](Index j, const Vec2&) {
-        if (!(exclude_self && j == i)) buf.j.push_back(j);
-      });
-      out.offset[i + 1] = static_cast<Index>(buf.j.size() - before);
+      const size_t before = used;
+      used = grid.gather_within(query[i], radius, exclude_self ? i : Index(-1), buf.j, used);
+      out.offset[i + 1] = static_cast<Index>(used - before);
     }
+    buf.used = used;
   }
   for (Index i = 0; i < n; ++i) out.offset[i + 1] += out.offset[i];
   out.j.resize(static_cast<size_t>(out.offset[n]));
 #pragma omp parallel for schedule(static, 1)
   for (int c = 0; c < nchunks; ++c) {
-    const std::vector<Index>& buf = out.chunks[static_cast<size_t>(c)].j;
-    std::copy(buf.begin(), buf.end(), out.j.begin() + out.offset[chunk_begin(c)]);
+    const NeighborLists::Chunk& buf = out.chunks[static_cast<size_t>(c)];
+    std::copy_n(buf.j.begin(), buf.used, out.j.begin() + out.offset[chunk_begin(c)]);
   }
   fill_pair_cache(query, grid.points(), kernel, cache, out);
 }

@@ -27,7 +27,8 @@ struct NeighborLists {
 
   // Per-thread scratch of find_neighbors (pairs of a contiguous chunk of queries).
   struct Chunk {
-    std::vector<Index> j;
+    std::vector<Index> j;  // size is capacity; the first `used` entries are valid
+    size_t used = 0;
   };
   std::vector<Chunk> chunks;
 };
@@ -40,30 +41,47 @@ class SpatialHashGrid {
   void build(const std::vector<Vec2>& points, double radius);
   const std::vector<Vec2>& points() const { return *points_; }
 
-  // Calls f(j, x_j) for every point j with |p - x_j| < radius (radius <= build radius).
-  template <class F>
-  void for_each_within(const Vec2& p, double radius, F&& f) const {
-    if (entries_.empty()) return;
+  // Appends to out[used..] every point j != skip with |p - x_j| < radius, growing `out`
+  // as needed (its size is capacity; `used` counts the valid entries); returns the new
+  // count. Branch-free inner loop: every candidate is written, only hits advance.
+  size_t gather_within(const Vec2& p, double radius, Index skip, std::vector<Index>& out, size_t used) const {
+    if (entries_.empty()) return used;
     const double r2 = radius * radius;
-    const std::int64_t cx = cell_coord(p.x()), cy = cell_coord(p.y());
     auto visit = [&](std::uint32_t begin, std::uint32_t end) {
+      if (out.size() < used + (end - begin)) out.resize(2 * (used + (end - begin)) + 64);
+      Index* o = out.data();
       for (std::uint32_t e = begin; e < end; ++e) {
         const Vec2& q = pos_[e];
         const double dx = p.x() - q.x(), dy = p.y() - q.y();
-        if (dx * dx + dy * dy < r2) f(entries_[e], q);
+        const Index j = entries_[e];
+        o[used] = j;
+        used += static_cast<size_t>((dx * dx + dy * dy < r2) & (j != skip));
       }
     };
+    const std::int64_t cx = cell_coord(p.x()), cy = cell_coord(p.y());
     if (dense_) {
       const std::int64_t c0 = std::max<std::int64_t>(cx - kReach - x0_, 0);
       const std::int64_t c1 = std::min<std::int64_t>(cx + kReach - x0_, nx_ - 1);
-      if (c0 > c1) return;
-      for (std::int64_t row = cy - kReach - y0_; row <= cy + kReach - y0_; ++row) {
-        if (row < 0 || row >= ny_) continue;
-        const std::int64_t base = row * nx_;
-        visit(start_[base + c0], start_[base + c1 + 1]);
-      }
-      return;
+      if (c0 > c1) return used;
+      const std::int64_t r0 = std::max<std::int64_t>(cy - kReach - y0_, 0);
+      const std::int64_t r1 = std::min<std::int64_t>(cy + kReach - y0_, ny_ - 1);
+      for (std::int64_t row = r0; row <= r1; ++row) visit(start_[row * nx_ + c0], start_[row * nx_ + c1 + 1]);
+      return used;
     }
+    for_each_bucket(cx, cy, visit);
+    return used;
+  }
+
+  Index size() const { return static_cast<Index>(entries_.size()); }
+  bool dense() const { return dense_; }
+
+ private:
+  static constexpr std::int64_t kReach = 2;  // cells of size radius/2 on each side
+
+  // Hashed grid: calls visit(begin, end) once for each distinct bucket of the
+  // (2 kReach + 1)^2 cells around cell (cx, cy) (two cells may share a bucket).
+  template <class V>
+  void for_each_bucket(std::int64_t cx, std::int64_t cy, V&& visit) const {
     constexpr int kCells = (2 * kReach + 1) * (2 * kReach + 1);
     std::uint32_t seen[kCells];
     int nseen = 0;
@@ -72,18 +90,12 @@ class SpatialHashGrid {
         const std::uint32_t b = bucket(cx + dx, cy + dy);
         bool dup = false;
         for (int s = 0; s < nseen; ++s) dup |= (seen[s] == b);
-        if (dup) continue;  // two cells of the block share a bucket: visit it once
+        if (dup) continue;
         seen[nseen++] = b;
         visit(start_[b], start_[b + 1]);
       }
     }
   }
-
-  Index size() const { return static_cast<Index>(entries_.size()); }
-  bool dense() const { return dense_; }
-
- private:
-  static constexpr std::int64_t kReach = 2;  // cells of size radius/2 on each side
   // floor(v * inv_cell_) without a libm call (baseline x86-64 has no inline floor).
   std::int64_t cell_coord(double v) const {
     const double s = v * inv_cell_;
