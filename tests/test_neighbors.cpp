@@ -115,6 +115,29 @@ TEST(Neighbors, GridEqualsBruteForceFarCoordinates) {
   expect_same_sets_both(mix, h);
 }
 
+// A bulk of points plus a few strays far away (a splash flung out of the tank): the
+// grid boxes the bulk and keeps the strays in its outlier cell. Strays in small groups
+// (so they have neighbours among themselves) and one right at the bulk's edge.
+TEST(Neighbors, GridEqualsBruteForceBulkWithFarStrays) {
+  const double h = 0.02;
+  Points p = uniform_points(4000, {0, 0}, {2, 1}, 11);
+  for (const Vec2 c : {Vec2(0.5, 40.0), Vec2(-30.0, -25.0), Vec2(2.0 + 3 * h, 0.5)}) {
+    const Points group = uniform_points(3, c, c + Vec2(1.5 * h, 1.5 * h), 12);
+    p.insert(p.end(), group.begin(), group.end());
+  }
+  SpatialHashGrid grid;
+  grid.build(p, 2 * h);
+  EXPECT_TRUE(grid.dense());  // the strays did not force the hashed grid
+  expect_same_sets_both(p, h);
+  // Many strays (more than 1% of the points) make the grid hash instead: same sets.
+  Points spread = uniform_points(2000, {0, 0}, {1, 1}, 13);
+  const Points far = uniform_points(100, {-500, -500}, {500, 500}, 14);
+  spread.insert(spread.end(), far.begin(), far.end());
+  grid.build(spread, 2 * h);
+  EXPECT_FALSE(grid.dense());
+  expect_same_sets_both(spread, h);
+}
+
 TEST(Neighbors, GridEqualsBruteForceCoincident) {
   const double h = 0.02;
   Points p = uniform_points(500, {0, 0}, {0.5, 0.5}, 7);

@@ -85,21 +85,21 @@ TEST(SceneFiles, DamBreakGeometry) {
   EXPECT_NEAR(high, 1.995, 1e-12);
   EXPECT_NEAR(right, 0.995, 1e-12);
 
-  // Bottom wall: layer 0 half a spacing below the surface (y = -0.005), layer 1 at
-  // y = -0.015; the offset chain of the open box is resampled at its own length.
+  // Closed tank (lid): layer 0 is the square half a spacing outside [0, 4]^2 (4 sides of
+  // 4.01 m, 401 intervals each), layer 1 the square 1.5 spacings outside (403 each).
   std::size_t floor0 = 0, floor1 = 0;
   for (const Vec2& p : s.boundary_x) {
     if (std::abs(p.y() + 0.005) < 1e-12) ++floor0;
     if (std::abs(p.y() + 0.015) < 1e-12) ++floor1;
   }
-  EXPECT_EQ(floor0, 402u);  // x = -0.005 ... 4.005, 401 intervals
-  EXPECT_EQ(floor1, 404u);  // x = -0.015 ... 4.015, 403 intervals
-  EXPECT_EQ(s.boundary_x.size(), 2410u);
+  EXPECT_EQ(floor0, 402u + 2u);  // x = -0.005 ... 4.005, plus layer 1's side walls passing y = -0.005
+  EXPECT_EQ(floor1, 404u);       // x = -0.015 ... 4.015
+  EXPECT_EQ(s.boundary_x.size(), 4u * 401u + 4u * 403u);
   EXPECT_EQ(min_pair_distance(s.boundary_x) > 0.0099, true);
   EXPECT_NEAR(s.bounds_min.x(), -0.015, 1e-12);
   EXPECT_NEAR(s.bounds_min.y(), -0.015, 1e-12);
   EXPECT_NEAR(s.bounds_max.x(), 4.015, 1e-12);
-  EXPECT_NEAR(s.bounds_max.y(), 4.0, 1e-12);
+  EXPECT_NEAR(s.bounds_max.y(), 4.015, 1e-12);
   EXPECT_EQ(s.objects[0].name, "tank");
   EXPECT_EQ(s.objects[0].shape, "box");
 }

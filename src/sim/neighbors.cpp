@@ -11,7 +11,7 @@
 
 namespace sluice {
 
-void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius) {
+void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius, double cells_per_point) {
   const size_t n = points.size();
   points_ = &points;
   // Cells slightly larger than radius / kReach: x * inv_cell_ is rounded, and two points
@@ -19,8 +19,19 @@ void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius) {
   // radius 0.1: 255.99999999999997 and 258 after scaling by 20).
   inv_cell_ = static_cast<double>(kReach) / (radius * (1.0 + 1e-6));
   key_.resize(n);
-  std::uint32_t cells = 0;
+  std::uint32_t cells = 0;  // buckets of the counting sort
   dense_ = false;
+  const double budget = std::min(cells_per_point * static_cast<double>(n) + 4096.0, 16777216.0);
+  // Sets a dense box over [lo, hi] when it fits the budget.
+  auto fit_box = [&](double minx, double maxx, double miny, double maxy) {
+    x0_ = cell_coord(minx);
+    y0_ = cell_coord(miny);
+    const double nx = static_cast<double>(cell_coord(maxx) - x0_ + 1), ny = static_cast<double>(cell_coord(maxy) - y0_ + 1);
+    if (!(nx * ny <= budget)) return false;
+    nx_ = static_cast<std::int64_t>(nx);
+    ny_ = static_cast<std::int64_t>(ny);
+    return true;
+  };
   if (n > 0) {
     double minx = points[0].x(), maxx = minx, miny = points[0].y(), maxy = miny;
     for (const Vec2& p : points) {
@@ -29,19 +40,39 @@ void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius) {
       miny = std::min(miny, p.y());
       maxy = std::max(maxy, p.y());
     }
-    x0_ = cell_coord(minx);
-    y0_ = cell_coord(miny);
-    const double nx = static_cast<double>(cell_coord(maxx) - x0_ + 1), ny = static_cast<double>(cell_coord(maxy) - y0_ + 1);
-    // Dense while the cell array stays small against the points or in absolute terms
-    // (4M cells, 16 MB); a box that a few stray points blow up falls back to hashing.
-    dense_ = nx * ny <= std::max(4.0 * static_cast<double>(n) + 4096.0, 4194304.0);
-    if (dense_) {
-      nx_ = static_cast<std::int64_t>(nx);
-      ny_ = static_cast<std::int64_t>(ny);
-      cells = static_cast<std::uint32_t>(nx_ * ny_);
-      for (size_t i = 0; i < n; ++i)
-        key_[i] = static_cast<std::uint32_t>((cell_coord(points[i].y()) - y0_) * nx_ + (cell_coord(points[i].x()) - x0_));
+    dense_ = fit_box(minx, maxx, miny, maxy);
+    if (!dense_ && n >= 64) {
+      // A few points flung far away make the box huge: box the 0.1% to 99.9% quantiles
+      // of each coordinate instead (plus a margin) and keep the points outside it in one
+      // extra "outlier" cell that every query scans.
+      const size_t k = n / 1000;
+      auto quantiles = [&](int axis, double& lo, double& hi) {
+        std::vector<double>& c = coord_;
+        c.resize(n);
+        for (size_t i = 0; i < n; ++i) c[i] = points[i][axis];
+        std::nth_element(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(k), c.end());
+        lo = c[k];
+        std::nth_element(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(n - 1 - k), c.end());
+        hi = c[n - 1 - k];
+      };
+      double lx, hx, ly, hy;
+      quantiles(0, lx, hx);
+      quantiles(1, ly, hy);
+      const double margin = 4.0 / inv_cell_;
+      dense_ = fit_box(lx - margin, hx + margin, ly - margin, hy + margin);
     }
+  }
+  if (dense_) {
+    cells = static_cast<std::uint32_t>(nx_ * ny_);
+    outliers_ = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const std::int64_t cx = cell_coord(points[i].x()) - x0_, cy = cell_coord(points[i].y()) - y0_;
+      const bool inside = cx >= 0 && cx < nx_ && cy >= 0 && cy < ny_;
+      key_[i] = inside ? static_cast<std::uint32_t>(cy * nx_ + cx) : cells;
+      outliers_ += !inside;
+    }
+    if (outliers_ > n / 100 + 16) dense_ = false;  // too many: hash instead
+    else ++cells;  // the outlier cell
   }
   if (!dense_) {
     cells = std::bit_ceil(static_cast<std::uint32_t>(std::max<size_t>(2 * n, 64)));
@@ -54,9 +85,9 @@ void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius) {
   for (std::uint32_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
   entries_.resize(n);
   pos_.resize(n);
-  std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+  fill_.assign(start_.begin(), start_.end() - 1);
   for (size_t i = 0; i < n; ++i) {
-    const std::uint32_t e = fill[key_[i]]++;
+    const std::uint32_t e = fill_[key_[i]]++;
     entries_[e] = static_cast<Index>(i);
     pos_[e] = points[i];
   }
@@ -72,10 +103,12 @@ void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid,
   const double radius = kernel.support();
   out.offset.resize(static_cast<size_t>(n) + 1);
   out.offset[0] = 0;
-  const int nchunks = std::max(1, omp_get_max_threads());
+  // More chunks than threads, taken dynamically, so that threads finish together; the
+  // output does not depend on the chunking.
+  const int nchunks = static_cast<int>(std::clamp<Index>(n / 512, 1, 8 * omp_get_max_threads()));
   out.chunks.resize(static_cast<size_t>(nchunks));
   auto chunk_begin = [&](int c) { return static_cast<Index>(static_cast<long long>(n) * c / nchunks); };
-#pragma omp parallel for schedule(static, 1)
+#pragma omp parallel for schedule(dynamic, 1)
   for (int c = 0; c < nchunks; ++c) {
     NeighborLists::Chunk& buf = out.chunks[static_cast<size_t>(c)];
     size_t used = 0;

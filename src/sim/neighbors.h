@@ -1,10 +1,11 @@
 #pragma once
 // Neighbour search (thesis appendix 7): particles binned into a uniform grid of cell
 // size h (half the kernel support 2h), built by a counting sort in O(n). The grid is
-// dense over the points' bounding box when that box holds at most max(4n, 4M) cells,
-// and each of the five cell rows around a query is then one contiguous range of
-// entries. Otherwise (a few points far away) cells are hashed into 2^k buckets, so
-// any coordinates work without a domain box.
+// dense over the points' bounding box when that box holds few cells per point, and
+// each of the five cell rows around a query is then one contiguous range of entries.
+// When a few points far away blow the box up, the box covers the bulk and those points
+// sit in one extra cell every query scans; when many do, cells are hashed into 2^k
+// buckets. Any coordinates work, without a domain box.
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -38,7 +39,10 @@ class SpatialHashGrid {
   // Bins `points` for queries of radius up to `radius`. The points are copied in cell
   // order so that queries read memory linearly. The grid keeps a reference to `points`
   // (see points()); it is valid while they are neither moved nor destroyed.
-  void build(const std::vector<Vec2>& points, double radius);
+  // The grid is dense when its box holds at most cells_per_point * n + 4096 cells (and
+  // 16M at most): a grid rebuilt every step wants few cells per point, a grid built
+  // once (walls that never move) may afford many for faster queries.
+  void build(const std::vector<Vec2>& points, double radius, double cells_per_point = 16.0);
   const std::vector<Vec2>& points() const { return *points_; }
 
   // Appends to out[used..] every point j != skip with |p - x_j| < radius, growing `out`
@@ -62,10 +66,11 @@ class SpatialHashGrid {
     if (dense_) {
       const std::int64_t c0 = std::max<std::int64_t>(cx - kReach - x0_, 0);
       const std::int64_t c1 = std::min<std::int64_t>(cx + kReach - x0_, nx_ - 1);
-      if (c0 > c1) return used;
       const std::int64_t r0 = std::max<std::int64_t>(cy - kReach - y0_, 0);
       const std::int64_t r1 = std::min<std::int64_t>(cy + kReach - y0_, ny_ - 1);
-      for (std::int64_t row = r0; row <= r1; ++row) visit(start_[row * nx_ + c0], start_[row * nx_ + c1 + 1]);
+      for (std::int64_t row = r0; c0 <= c1 && row <= r1; ++row) visit(start_[row * nx_ + c0], start_[row * nx_ + c1 + 1]);
+      const std::int64_t outlier_cell = nx_ * ny_;
+      visit(start_[outlier_cell], start_[outlier_cell + 1]);
       return used;
     }
     for_each_bucket(cx, cy, visit);
@@ -111,11 +116,14 @@ class SpatialHashGrid {
   double inv_cell_ = 1.0;
   bool dense_ = false;
   std::int64_t x0_ = 0, y0_ = 0, nx_ = 0, ny_ = 0;  // dense grid: first cell and size
+  size_t outliers_ = 0;                            // dense grid: points outside the box (cell nx_ * ny_)
   std::uint32_t mask_ = 0;                         // hashed grid: buckets - 1
   std::vector<std::uint32_t> start_;  // cell (or bucket) c holds entries [start_[c], start_[c+1])
   std::vector<Index> entries_;        // point indices in cell order
   std::vector<Vec2> pos_;             // their positions, same order
   std::vector<std::uint32_t> key_;    // scratch: cell of each point
+  std::vector<std::uint32_t> fill_;   // scratch: next free entry of each cell
+  std::vector<double> coord_;         // scratch: coordinates for the quantile box
 };
 
 // Options of a neighbour list build.

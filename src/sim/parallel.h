@@ -12,10 +12,13 @@
 namespace sluice {
 
 inline constexpr Index kReduceBlock = 1024;
+// Particles per scheduling chunk. Chunks are dealt round-robin, so that both halves of
+// a spatially sorted array (a dense pool and a thin spray, say) are shared by all threads.
+inline constexpr Index kForChunk = 256;
 
 template <class F>
 void parallel_for(Index n, F&& f) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static, kForChunk)
   for (Index i = 0; i < n; ++i) f(i);
 }
 
@@ -24,7 +27,7 @@ template <class F>
 double parallel_sum(Index n, F&& f) {
   const Index blocks = (n + kReduceBlock - 1) / kReduceBlock;
   std::vector<double> partial(static_cast<size_t>(blocks), 0.0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static, 1)
   for (Index b = 0; b < blocks; ++b) {
     const Index end = std::min(n, (b + 1) * kReduceBlock);
     double s = 0.0;
@@ -41,7 +44,7 @@ template <class F>
 double parallel_max(Index n, double init, F&& f) {
   const Index blocks = (n + kReduceBlock - 1) / kReduceBlock;
   std::vector<double> partial(static_cast<size_t>(blocks), init);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static, 1)
   for (Index b = 0; b < blocks; ++b) {
     const Index end = std::min(n, (b + 1) * kReduceBlock);
     double m = init;

@@ -74,7 +74,7 @@ Simulation::Simulation(const Scene& scene)
   }
   boundary_.v.assign(nb, Vec2::Zero());
   boundary_.p.assign(nb, 0.0);
-  boundary_grid_.build(boundary_.x, kernel_.support());
+  boundary_grid_.build(boundary_.x, kernel_.support(), /*cells_per_point=*/1024.0);  // built once
   compute_boundary_volumes();
 
   const Vec2 size = (scene.bounds_max - scene.bounds_min).cwiseMax(Vec2::Constant(scene.spacing));
