@@ -121,7 +121,7 @@ TEST(Neighbors, GridEqualsBruteForceFarCoordinates) {
 TEST(Neighbors, GridEqualsBruteForceBulkWithFarStrays) {
   const double h = 0.02;
   Points p = uniform_points(4000, {0, 0}, {2, 1}, 11);
-  for (const Vec2 c : {Vec2(0.5, 40.0), Vec2(-30.0, -25.0), Vec2(2.0 + 3 * h, 0.5)}) {
+  for (const Vec2& c : {Vec2(0.5, 40.0), Vec2(-30.0, -25.0), Vec2(2.0 + 3 * h, 0.5)}) {
     const Points group = uniform_points(3, c, c + Vec2(1.5 * h, 1.5 * h), 12);
     p.insert(p.end(), group.begin(), group.end());
   }
