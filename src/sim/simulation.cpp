@@ -283,7 +283,7 @@ void Simulation::apply_nonpressure(double dt) {
 // Per-step boundary quantities of the pressure solvers:
 //   grad_b_i = sum_b m_b grad W_ib (Eq. 24 and Eq. 26 boundary sums),
 //   for Eq. 25: sum_f W_bf and g . sum_f rho_f x_bf W_bf.
-void Simulation::prepare_boundary_terms(double /*dt*/) {
+void Simulation::prepare_boundary_terms() {
   const Index n = fluid_.size(), nb = boundary_.size();
   const double rho0 = settings_.rest_density;
   scratch_.grad_b.resize(n);
@@ -383,7 +383,7 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
   const Index n = fluid_.size();
   const SolverSettings& s = settings_;
   const double rho0 = s.rest_density, g2 = s.gamma2, g3 = s.gamma3, omega = s.omega;
-  prepare_boundary_terms(dt);
+  prepare_boundary_terms();
   scratch_.s.resize(n);
   scratch_.a_ii.resize(n);
   scratch_.p_over_rho2.resize(n);
@@ -458,10 +458,10 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
 }
 
 // WCSPH (section 2.3.1): p_i = max(k (rho_i / rho0 - 1), 0), then Eq. 24.
-void Simulation::solve_pressure_wcsph(double dt, StepStats& st) {
+void Simulation::solve_pressure_wcsph(double /*dt*/, StepStats& st) {
   const Index n = fluid_.size();
   const double rho0 = settings_.rest_density, k = settings_.stiffness;
-  prepare_boundary_terms(dt);
+  prepare_boundary_terms();
   scratch_.p_over_rho2.resize(n);
   parallel_for(n, [&](Index i) {
     const double rho = fluid_.rho[i];

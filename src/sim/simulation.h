@@ -78,7 +78,7 @@ class Simulation {
   void reorder_fluid();
 
   // Building blocks of the pressure solvers.
-  void prepare_boundary_terms(double dt);     // grad_b, Eq. 25 weights
+  void prepare_boundary_terms();              // grad_b, Eq. 25 weights
   void update_boundary_pressure();            // Eq. 25 / 4.2.2 / 4.2.3 -> pb_over_rho2
   void compute_pressure_acceleration();       // Eq. 24 -> a_p
 
