@@ -30,8 +30,9 @@ struct BenchRow {
   }
 };
 
-BenchRow run_once(const Scene& scene, long steps) {
+BenchRow run_once(const Scene& scene, long steps, bool brute_force) {
   Simulation sim(scene);
+  sim.set_brute_force_neighbors(brute_force);
   BenchRow row;
   row.scene = scene.name;
   row.solver = to_string(scene.solver.type);
@@ -53,7 +54,7 @@ int run_bench(const BenchOptions& o) {
   for (const std::string& file : o.scenes) {
     const Scene scene = load_scene(file, o.set);
     std::vector<BenchRow> runs;
-    for (int r = 0; r < o.repeat; ++r) runs.push_back(run_once(scene, o.steps));
+    for (int r = 0; r < o.repeat; ++r) runs.push_back(run_once(scene, o.steps, o.brute_force));
     std::sort(runs.begin(), runs.end(),
               [](const BenchRow& a, const BenchRow& b) { return a.totals.sum_ms[4] < b.totals.sum_ms[4]; });
     const BenchRow& m = runs[runs.size() / 2];

@@ -23,8 +23,63 @@ struct BenchOptions {
   int threads = 0;
   std::vector<std::string> set;
   std::string csv = "renders/bench/bench.csv";
+  bool brute_force = false;  // O(n^2) neighbour search (the thesis' Figure 14 comparison)
 };
 int run_bench(const BenchOptions& o);
+
+// Options shared by `render` and `still`.
+struct ImageOptions {
+  std::string resolution = "1280x720";  // WxH
+  std::string color_by = "cfl";         // cfl | speed | pressure | density_error
+  std::string colormap = "spectrum";    // spectrum | viridis | turbo
+  std::string range;                    // "lo:hi"; empty: automatic
+  bool no_overlay = false;
+  bool no_colorbar = false;
+  int msaa = 0;                         // 0 or 4
+  std::string egl = "auto";             // auto | surfaceless | device
+};
+
+struct RenderOptions {
+  std::string scene;
+  std::string output_dir;  // empty: the scene's output.directory
+  double fps = 0;          // > 0 overrides time.fps
+  double duration = 0;     // > 0 overrides time.duration
+  std::string frames;      // "A:B": render only frames A..B (the run stops at B)
+  ImageOptions image;
+  bool no_video = false;
+  int threads = 0;
+  std::vector<std::string> set;
+  bool quiet = false;
+};
+int run_render(const RenderOptions& o);
+
+struct StillOptions {
+  std::string scene;
+  double time = 0;
+  std::string output;  // empty: <output dir>/still.png
+  ImageOptions image;
+  int threads = 0;
+  std::vector<std::string> set;
+};
+int run_still(const StillOptions& o);
+
+struct CompareOptions {
+  std::string a, b;
+  int tolerance = 0;          // allowed channel difference per pixel
+  double max_fraction = 0;    // share of pixels allowed beyond the tolerance
+  std::string diff;           // diff image path (written when the images differ)
+};
+int run_compare(const CompareOptions& o);
+
+struct BenchRenderOptions {
+  std::vector<long> particles{10000, 130000};
+  std::vector<std::string> resolutions{"1280x720", "1920x1080"};
+  int repeat = 5;
+  int msaa = 0;
+  std::string egl = "auto";
+  std::string csv = "renders/bench/render.csv";
+};
+int run_bench_render(const BenchRenderOptions& o);
 
 void set_threads(int threads);
 

@@ -5,6 +5,8 @@
 
 #include "app/commands.h"
 #include "io/output.h"
+#include "render/image.h"
+#include "render/video.h"
 #include "scene/scene.h"
 #include "sim/simulation.h"
 
@@ -37,17 +39,88 @@ int main(int argc, char** argv) {
   benchcmd->add_option("--threads", bench.threads, "OpenMP threads")->check(CLI::PositiveNumber);
   benchcmd->add_option("--set", bench.set, "Override a scene value (applies to every scene)")->take_all();
   benchcmd->add_option("--csv", bench.csv, "CSV output file");
+  benchcmd->add_flag("--brute-force", bench.brute_force, "O(n^2) neighbour search instead of the grid");
+
+  // Image flags shared by `render` and `still`.
+  auto add_image_options = [](CLI::App* cmd, ImageOptions& io) {
+    cmd->add_option("--resolution", io.resolution, "Image size WxH (default 1280x720; even sizes for video)");
+    cmd->add_option("--color-by", io.color_by, "Field: cfl (|v| dt / spacing, default), speed, pressure, density_error")
+        ->check(CLI::IsMember({"cfl", "speed", "pressure", "density_error"}));
+    cmd->add_option("--colormap", io.colormap, "spectrum (blue to red, default), viridis, turbo")
+        ->check(CLI::IsMember({"spectrum", "viridis", "turbo"}));
+    cmd->add_option("--range", io.range, "Fixed colour range lo:hi (default: 0:1 for cfl, 0:max of each frame otherwise)");
+    cmd->add_flag("--no-overlay", io.no_overlay, "No time/frame/step/iterations line");
+    cmd->add_flag("--no-colorbar", io.no_colorbar, "No colorbar");
+    cmd->add_option("--msaa", io.msaa, "Multisampling: 0 (default) or 4")->check(CLI::IsMember({0, 4}));
+    cmd->add_option("--egl", io.egl, "EGL platform: auto (default: surfaceless, then device), surfaceless, device")
+        ->check(CLI::IsMember({"auto", "surfaceless", "device"}));
+  };
+
+  RenderOptions ren;
+  CLI::App* render = app.add_subcommand("render", "Simulate a scene and render PNG frames and an MP4 video");
+  render->add_option("scene", ren.scene, "Scene file (JSON)")->required();
+  render->add_option("-o,--output", ren.output_dir, "Output directory (default: the scene's output.directory)");
+  render->add_option("--fps", ren.fps, "Frames per second (overrides time.fps)")->check(CLI::PositiveNumber);
+  render->add_option("--duration", ren.duration, "Simulated seconds (overrides time.duration)")->check(CLI::PositiveNumber);
+  render->add_option("--frames", ren.frames, "Render only frames A:B (the run stops at frame B)");
+  add_image_options(render, ren.image);
+  render->add_flag("--no-video", ren.no_video, "PNG frames only, no MP4");
+  render->add_option("--threads", ren.threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  render->add_option("--set", ren.set, "Override a scene value: path=value")->take_all();
+  render->add_flag("-q,--quiet", ren.quiet, "No progress output");
+
+  StillOptions still;
+  CLI::App* stillcmd = app.add_subcommand("still", "Render one frame at a simulated time to a PNG");
+  stillcmd->add_option("scene", still.scene, "Scene file (JSON)")->required();
+  stillcmd->add_option("--time", still.time, "Simulated time [s]")->required()->check(CLI::NonNegativeNumber);
+  stillcmd->add_option("-o,--output", still.output, "PNG file (default: <output directory>/still.png)");
+  add_image_options(stillcmd, still.image);
+  stillcmd->add_option("--threads", still.threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  stillcmd->add_option("--set", still.set, "Override a scene value: path=value")->take_all();
+
+  CompareOptions cmp;
+  CLI::App* compare = app.add_subcommand("compare", "Compare two PNG images; exit 0 when they match, 1 otherwise");
+  compare->add_option("a", cmp.a, "First PNG")->required();
+  compare->add_option("b", cmp.b, "Second PNG")->required();
+  compare->add_option("--tolerance", cmp.tolerance, "Channel difference a pixel may have (default 0)")
+      ->check(CLI::Range(0, 255));
+  compare->add_option("--max-fraction", cmp.max_fraction, "Share of pixels allowed beyond the tolerance (default 0)")
+      ->check(CLI::Range(0.0, 1.0));
+  compare->add_option("--diff", cmp.diff, "Write a diff image here when pixels differ");
+
+  BenchRenderOptions brender;
+  CLI::App* benchrender = app.add_subcommand("bench-render", "Time the renderer: draw, read-back, PNG per frame");
+  benchrender->add_option("--particles", brender.particles, "Particle counts (default 10000 130000)")
+      ->delimiter(',')->check(CLI::PositiveNumber);
+  benchrender->add_option("--resolution", brender.resolutions, "Resolutions WxH (default 1280x720 1920x1080)")
+      ->delimiter(',');
+  benchrender->add_option("--repeat", brender.repeat, "Frames timed per case; the median is reported")
+      ->check(CLI::PositiveNumber);
+  benchrender->add_option("--msaa", brender.msaa, "0 or 4")->check(CLI::IsMember({0, 4}));
+  benchrender->add_option("--egl", brender.egl, "auto, surfaceless, device")
+      ->check(CLI::IsMember({"auto", "surfaceless", "device"}));
+  benchrender->add_option("--csv", brender.csv, "CSV output file");
 
   CLI11_PARSE(app, argc, argv);
   try {
     if (*simulate) return run_simulate(sim);
     if (*benchcmd) return run_bench(bench);
+    if (*render) return run_render(ren);
+    if (*stillcmd) return run_still(still);
+    if (*compare) return run_compare(cmp);
+    if (*benchrender) return run_bench_render(brender);
   } catch (const sluice::SceneError& e) {
     std::fprintf(stderr, "sluice: scene error: %s\n", e.what());
     return 2;
   } catch (const sluice::OutputError& e) {
     std::fprintf(stderr, "sluice: output error: %s\n", e.what());
     return 3;
+  } catch (const sluice::render::VideoError& e) {
+    std::fprintf(stderr, "sluice: video error: %s\n", e.what());
+    return 5;
+  } catch (const sluice::render::RenderError& e) {
+    std::fprintf(stderr, "sluice: render error: %s\n", e.what());
+    return 6;
   } catch (const sluice::SimulationUnstable& e) {
     std::fprintf(stderr, "sluice: %s\n", e.what());
     return 4;

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "app/commands.h"
+#include "app/run.h"
 #include "io/output.h"
 #include "scene/scene.h"
 #include "sim/simulation.h"
@@ -27,12 +28,6 @@ std::string frame_name(Index frame, const char* ext) {
   return buf;
 }
 
-void make_directory(const fs::path& dir) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw OutputError(dir.string() + ": cannot create directory: " + ec.message());
-}
-
 std::string clock_string(double seconds) {
   char buf[32];
   const long s = static_cast<long>(seconds + 0.5);
@@ -41,6 +36,12 @@ std::string clock_string(double seconds) {
 }
 
 }  // namespace
+
+void make_directory(const fs::path& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw OutputError(dir.string() + ": cannot create directory: " + ec.message());
+}
 
 int run_simulate(const SimulateOptions& o) {
   set_threads(o.threads);
@@ -54,20 +55,27 @@ int run_simulate(const SimulateOptions& o) {
   const bool want_vtk = std::find(exports.begin(), exports.end(), "vtk") != exports.end();
   if (want_csv || want_vtk) make_directory(dir / "particles");
 
-  const bool tty = isatty(fileno(stderr)) && !o.quiet;
-  if (!o.quiet)
+  const fs::path particles = dir / "particles";
+  auto export_frame = [&](const Simulation& sim, Index frame, const StepStats*) {
+    if (want_csv) write_file_atomic((particles / frame_name(frame, "csv")).string(), particles_csv(sim.fluid()));
+    if (want_vtk)
+      write_file_atomic((particles / frame_name(frame, "vtk")).string(), particles_vtk(sim.fluid(), sim.time()));
+  };
+  run_scene(scene, dir, o.quiet, export_frame);
+  return 0;
+}
+
+void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameCallback& on_frame) {
+  make_directory(dir);
+  const bool tty = isatty(fileno(stderr)) && !quiet;
+  if (!quiet)
     std::fprintf(stderr, "sluice: %s: %zu fluid particles (%d removed inside boundaries), %zu boundary particles, %s, %d threads\n",
                  scene.file.c_str(), scene.fluid_x.size(), scene.fluid_removed, scene.boundary_x.size(),
                  to_string(scene.solver.type), omp_get_max_threads());
 
   Simulation sim(scene);
   StatsCsv csv((dir / "stats.csv").string());
-  auto export_frame = [&](Index frame) {
-    if (want_csv) write_file_atomic((dir / "particles" / frame_name(frame, "csv")).string(), particles_csv(sim.fluid()));
-    if (want_vtk)
-      write_file_atomic((dir / "particles" / frame_name(frame, "vtk")).string(), particles_vtk(sim.fluid(), sim.time()));
-  };
-  export_frame(0);
+  on_frame(sim, 0, nullptr);
 
   RunTotals totals;
   nlohmann::json summary = {
@@ -96,7 +104,7 @@ int run_simulate(const SimulateOptions& o) {
       csv.write(st);
       totals.add(st);
       if (st.frame < 0) continue;
-      export_frame(st.frame);
+      on_frame(sim, st.frame, &st);
       csv.flush();
       const double wall = elapsed();
       const double eta = sim.time() > 0 ? wall / sim.time() * (scene.time.duration - sim.time()) : 0.0;
@@ -104,7 +112,7 @@ int run_simulate(const SimulateOptions& o) {
         std::fprintf(stderr, "\r  t = %.3f / %.3f s   frame %d / %d   step %ld   iterations %d   error %.3f%%   ETA %s   ",
                      sim.time(), scene.time.duration, st.frame, sim.frame_count(), st.step, st.iterations,
                      st.avg_error_percent, clock_string(eta).c_str());
-      } else if (!o.quiet && (st.frame % 10 == 0 || st.frame == sim.frame_count())) {
+      } else if (!quiet && (st.frame % 10 == 0 || st.frame == sim.frame_count())) {
         std::fprintf(stderr, "  t = %.3f s, frame %d/%d, step %ld, avg iterations %.2f, wall %.1f s, ETA %s\n",
                      sim.time(), st.frame, sim.frame_count(), st.step,
                      totals.sum_iterations / static_cast<double>(totals.steps), wall, clock_string(eta).c_str());
@@ -122,11 +130,10 @@ int run_simulate(const SimulateOptions& o) {
   totals.wall_seconds = elapsed();
   csv.flush();
   write_summary("completed", "");
-  if (!o.quiet)
+  if (!quiet)
     std::fprintf(stderr, "sluice: %ld steps in %.1f s, %.2f iterations and %.4f%% error on average; wrote %s\n",
                  totals.steps, totals.wall_seconds, totals.sum_iterations / std::max(1.0, double(totals.steps)),
                  totals.sum_avg_error / std::max(1.0, double(totals.steps)), dir.c_str());
-  return 0;
 }
 
 }  // namespace sluice::app

@@ -1,0 +1,22 @@
+#pragma once
+// The run loop shared by `simulate` and `render`: steps a scene to its duration,
+// writes stats.csv and summary.json, prints progress, and calls back at t = 0 and at
+// every frame time.
+#include <filesystem>
+#include <functional>
+
+#include "scene/scene.h"
+#include "sim/simulation.h"
+
+namespace sluice::app {
+
+// `last` is the step that landed on the frame time (nullptr for frame 0 at t = 0).
+using FrameCallback = std::function<void(const Simulation& sim, Index frame, const StepStats* last)>;
+
+// Creates `dir` and its parents; throws OutputError.
+void make_directory(const std::filesystem::path& dir);
+
+// Throws SimulationUnstable (after writing summary.json with "status": "unstable").
+void run_scene(const Scene& scene, const std::filesystem::path& dir, bool quiet, const FrameCallback& on_frame);
+
+}  // namespace sluice::app
