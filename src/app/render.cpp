@@ -213,6 +213,8 @@ int run_render(const RenderOptions& o) {
     }
   }
   const ImageConfig config = resolve_image(o.image, scene);
+  if (!o.no_video && (config.frame.width % 2 != 0 || config.frame.height % 2 != 0))
+    throw usage("--resolution", o.image.resolution, "H.264 (yuv420p) needs even width and height; or pass --no-video");
   const fs::path dir = o.output_dir.empty() ? fs::path(scene.output.directory) : fs::path(o.output_dir);
   const fs::path frames_dir = dir / "frames";
   make_directory(frames_dir);

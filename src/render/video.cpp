@@ -64,6 +64,8 @@ void encode_video(const VideoJob& job) {
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     const std::string how = WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status))
                                               : "killed by signal " + std::to_string(WTERMSIG(status));
+    std::error_code ignored;
+    std::filesystem::remove(job.output + ".tmp.mp4", ignored);
     throw VideoError("ffmpeg failed (" + how + "; its messages are in " + job.log + "): " + cmd);
   }
   std::error_code ec;
