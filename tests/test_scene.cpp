@@ -123,10 +123,30 @@ TEST(SceneFiles, ResolvedHasEveryDefault) {
   EXPECT_EQ(r["output"]["export"], nlohmann::json::array());
   EXPECT_EQ(r["name"], "tiny");
   EXPECT_EQ(r["fluid"][0]["velocity"], nlohmann::json::array({0.0, 0.0}));
+  EXPECT_EQ(r["render"]["resolution"], nlohmann::json::array({1280, 720}));
+  EXPECT_EQ(r["render"]["color_by"], "cfl");
+  EXPECT_TRUE(r["render"]["range"].is_null());
+  EXPECT_TRUE(r["render"]["view"].is_null());
   // The resolved scene is itself a valid scene with the same result.
   const Scene again = parse_scene(r.dump(), "resolved.json");
   EXPECT_EQ(again.fluid_x.size(), s.fluid_x.size());
   EXPECT_EQ(again.resolved, r);
+}
+
+TEST(SceneFiles, RenderSection) {
+  const Scene s = parse_scene(scene_with(R"("render": {"resolution": [640, 360], "color_by": "pressure", "colormap": "viridis",
+      "range": [0, 5000], "view": {"min": [-0.5, 0], "max": [1.5, 1]}},)"), "scenes/r.json");
+  EXPECT_EQ(s.render.width, 640);
+  EXPECT_EQ(s.render.height, 360);
+  EXPECT_EQ(s.render.color_by, "pressure");
+  EXPECT_EQ(s.render.colormap, "viridis");
+  EXPECT_TRUE(s.render.fixed_range);
+  EXPECT_EQ(s.render.range_hi, 5000);
+  EXPECT_TRUE(s.render.fixed_view);
+  EXPECT_EQ(s.render.view_min, Vec2(-0.5, 0));
+  EXPECT_EQ(s.render.view_max, Vec2(1.5, 1));
+  const Scene again = parse_scene(s.resolved.dump(), "resolved.json");
+  EXPECT_EQ(again.resolved, s.resolved);
 }
 
 // --- validation messages ---------------------------------------------------------------------
@@ -144,7 +164,7 @@ TEST(SceneErrors, BadInputsNameFilePathAndAllowed) {
        {"scenes/x.json:4:42: JSON parse error: ", "unexpected string literal"}},
       {"bad literal", "{\"spacing\": 0.01,\n\"fluid\": [],\n\"x\": tru }", {"scenes/x.json:3:9: JSON parse error: ", "invalid literal"}},
       {"unknown top-level key", scene_with(R"("fluids": 1,)"),
-       {"scenes/x.json: /fluids: unknown key; allowed keys: name, spacing, solver, time, stability, output, fluid, boundaries"}},
+       {"scenes/x.json: /fluids: unknown key; allowed keys: name, spacing, solver, time, stability, output, render, fluid, boundaries"}},
       {"unknown nested key", scene_with(R"("solver": {"tolernce": 0.05},)"),
        {"scenes/x.json: /solver/tolernce: unknown key; allowed keys: type, rest_density, gravity, viscosity, tolerance,"}},
       {"unknown boundary key", scene_with(R"("boundaries": [{"shape": "circle", "center": [0, 0], "radius": 1, "lid": true}],)"),
@@ -206,6 +226,19 @@ TEST(SceneErrors, BadInputsNameFilePathAndAllowed) {
       {"duplicate boundary name", scene_with(box + R"("boundaries": 1,)"), {"/boundaries: duplicate key"}},
       {"box max below min", scene_with(R"("boundaries": [{"shape": "box", "min": [0, 0], "max": [4, 0]}],)"),
        {"/boundaries/0/max:", "must be above min"}},
+      {"render range reversed", scene_with(R"("render": {"range": [2, 1]},)"),
+       {"/render/range: range [2,1] must be [lo, hi] with lo < hi"}},
+      {"render bad field", scene_with(R"("render": {"color_by": "velocity"},)"),
+       {R"(/render/color_by: invalid value "velocity"; must be one of: cfl, speed, pressure, density_error)"}},
+      {"render bad colormap", scene_with(R"("render": {"colormap": "jet"},)"), {"/render/colormap:", "spectrum, viridis, turbo"}},
+      {"render odd resolution shape", scene_with(R"("render": {"resolution": "1280x720"},)"),
+       {R"(/render/resolution: expected [width, height] in pixels, got "1280x720")"}},
+      {"render resolution too small", scene_with(R"("render": {"resolution": [1, 720]},)"),
+       {"/render/resolution/0: value 1 is out of range; must be an integer in [2, 16384]"}},
+      {"render empty view", scene_with(R"("render": {"view": {"min": [0, 0], "max": [1, 0]}},)"),
+       {"/render/view/max:", "must be above min"}},
+      {"render view unknown key", scene_with(R"("render": {"view": {"min": [0, 0], "max": [1, 1], "zoom": 2}},)"),
+       {"/render/view/zoom: unknown key; allowed keys: min, max"}},
       {"huge lattice", R"({"spacing": 1e-6, "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [1, 1]}]})",
        {"/fluid/0: the fluid would have more than 20000000 lattice points"}},
   };

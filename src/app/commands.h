@@ -27,12 +27,13 @@ struct BenchOptions {
 };
 int run_bench(const BenchOptions& o);
 
-// Options shared by `render` and `still`.
+// Options shared by `render` and `still`. An empty string takes the scene's `render`
+// section (whose defaults are 1280x720, cfl, spectrum, automatic range).
 struct ImageOptions {
-  std::string resolution = "1280x720";  // WxH
-  std::string color_by = "cfl";         // cfl | speed | pressure | density_error
-  std::string colormap = "spectrum";    // spectrum | viridis | turbo
-  std::string range;                    // "lo:hi"; empty: automatic
+  std::string resolution;  // WxH
+  std::string color_by;    // cfl | speed | pressure | density_error
+  std::string colormap;    // spectrum | viridis | turbo
+  std::string range;       // "lo:hi" or "auto"
   bool no_overlay = false;
   bool no_colorbar = false;
   int msaa = 0;                         // 0 or 4

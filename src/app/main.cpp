@@ -43,12 +43,12 @@ int main(int argc, char** argv) {
 
   // Image flags shared by `render` and `still`.
   auto add_image_options = [](CLI::App* cmd, ImageOptions& io) {
-    cmd->add_option("--resolution", io.resolution, "Image size WxH (default 1280x720; even sizes for video)");
-    cmd->add_option("--color-by", io.color_by, "Field: cfl (|v| dt / spacing, default), speed, pressure, density_error")
+    cmd->add_option("--resolution", io.resolution, "Image size WxH (default: the scene's render.resolution, 1280x720; even sizes for video)");
+    cmd->add_option("--color-by", io.color_by, "Field: cfl (|v| dt / spacing), speed, pressure, density_error (default: render.color_by, cfl)")
         ->check(CLI::IsMember({"cfl", "speed", "pressure", "density_error"}));
-    cmd->add_option("--colormap", io.colormap, "spectrum (blue to red, default), viridis, turbo")
+    cmd->add_option("--colormap", io.colormap, "spectrum (blue to red), viridis, turbo (default: render.colormap, spectrum)")
         ->check(CLI::IsMember({"spectrum", "viridis", "turbo"}));
-    cmd->add_option("--range", io.range, "Fixed colour range lo:hi (default: 0:1 for cfl, 0:max of each frame otherwise)");
+    cmd->add_option("--range", io.range, "Colour range lo:hi, or auto (fixed for the run from the scene: cfl 0:1, speed 0:sqrt(2 g H), pressure 0:rho0 g H, density_error 0:1; default: render.range)");
     cmd->add_flag("--no-overlay", io.no_overlay, "No time/frame/step/iterations line");
     cmd->add_flag("--no-colorbar", io.no_colorbar, "No colorbar");
     cmd->add_option("--msaa", io.msaa, "Multisampling: 0 (default) or 4")->check(CLI::IsMember({0, 4}));

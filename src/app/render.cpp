@@ -76,34 +76,68 @@ const char* field_label(Field f) {
 struct ImageConfig {
   FrameSettings frame;
   Field field = Field::cfl;
-  bool fixed_range = false;
-  double lo = 0, hi = 1;
+  double lo = 0, hi = 1;  // colour range, fixed for the run
 };
 
+// The automatic colour range: fixed for the whole run (no flicker between frames) and
+// derived from the scene's scales. H is the fluid's height at t = 0: sqrt(2 g H) is the
+// speed of a free fall from the top of the fluid, rho0 g H the hydrostatic pressure at
+// its bottom (2D pressure, Pa*m). CFL: 0..1, the stability scale of Eq. 14.
+void automatic_range(Field f, const Scene& scene, double& lo, double& hi) {
+  double ymin = scene.fluid_x.front().y(), ymax = ymin;
+  for (const Vec2& p : scene.fluid_x) {
+    ymin = std::min(ymin, p.y());
+    ymax = std::max(ymax, p.y());
+  }
+  const double height = ymax - ymin + scene.spacing, g = scene.solver.gravity.norm();
+  double vmax0 = 0;
+  for (const Vec2& v : scene.fluid_v) vmax0 = std::max(vmax0, v.norm());
+  lo = 0;
+  switch (f) {
+    case Field::cfl: hi = 1; break;
+    case Field::speed: hi = std::max(std::sqrt(2 * g * height), vmax0); break;
+    case Field::pressure: hi = scene.solver.rest_density * g * height; break;
+    case Field::density_error: hi = 1; break;
+  }
+  if (!(hi > 0)) hi = 1;  // no gravity and no motion: any scale
+}
+
 ImageConfig resolve_image(const ImageOptions& o, const Scene& scene) {
+  const RenderSettings& rs = scene.render;
   ImageConfig c;
-  parse_resolution(o.resolution, c.frame.width, c.frame.height);
-  c.field = parse_field(o.color_by);
-  const auto cmap = parse_colormap(o.colormap);
-  if (!cmap) throw usage("--colormap", o.colormap, "allowed: spectrum, viridis, turbo");
+  if (o.resolution.empty()) {
+    c.frame.width = rs.width;
+    c.frame.height = rs.height;
+  } else {
+    parse_resolution(o.resolution, c.frame.width, c.frame.height);
+  }
+  c.field = parse_field(o.color_by.empty() ? rs.color_by : o.color_by);
+  const std::string cmap_name = o.colormap.empty() ? rs.colormap : o.colormap;
+  const auto cmap = parse_colormap(cmap_name);
+  if (!cmap) throw usage("--colormap", cmap_name, "allowed: spectrum, viridis, turbo");
   c.frame.colormap = *cmap;
   const auto egl = parse_egl_platform(o.egl);
   if (!egl) throw usage("--egl", o.egl, "allowed: auto, surfaceless, device");
   c.frame.egl = *egl;
   if (o.msaa != 0 && o.msaa != 4) throw usage("--msaa", std::to_string(o.msaa), "allowed: 0 or 4");
   c.frame.msaa = o.msaa;
-  if (!o.range.empty()) {
-    if (!parse_pair(o.range, c.lo, c.hi) || !(c.hi > c.lo))
-      throw usage("--range", o.range, "expected lo:hi with lo < hi, e.g. 0:1");
-    c.fixed_range = true;
+  if (o.range == "auto" || (o.range.empty() && !rs.fixed_range)) {
+    automatic_range(c.field, scene, c.lo, c.hi);
+  } else if (o.range.empty()) {
+    c.lo = rs.range_lo;
+    c.hi = rs.range_hi;
+  } else if (!parse_pair(o.range, c.lo, c.hi) || !(c.hi > c.lo)) {
+    throw usage("--range", o.range, "expected lo:hi with lo < hi, e.g. 0:1, or auto");
   }
   c.frame.field_label = field_label(c.field);
   c.frame.colorbar = !o.no_colorbar;
   c.frame.overlay = !o.no_overlay;
-  c.frame.bounds_min[0] = scene.bounds_min.x();
-  c.frame.bounds_min[1] = scene.bounds_min.y();
-  c.frame.bounds_max[0] = scene.bounds_max.x();
-  c.frame.bounds_max[1] = scene.bounds_max.y();
+  const Vec2 lo = rs.fixed_view ? rs.view_min : scene.bounds_min, hi = rs.fixed_view ? rs.view_max : scene.bounds_max;
+  c.frame.fit_margin = !rs.fixed_view;
+  c.frame.bounds_min[0] = lo.x();
+  c.frame.bounds_min[1] = lo.y();
+  c.frame.bounds_max[0] = hi.x();
+  c.frame.bounds_max[1] = hi.y();
   return c;
 }
 
@@ -127,7 +161,6 @@ class FrameBuilder {
     const double dt = last ? last->dt : (scene.time.dt > 0 ? scene.time.dt : scene.time.dt_max);
     const double rho0 = scene.solver.rest_density;
     values_.resize(f.x.size());
-    double vmax = 0;
     for (size_t i = 0; i < values_.size(); ++i) {
       double v = 0;
       switch (c_.field) {
@@ -137,7 +170,6 @@ class FrameBuilder {
         case Field::density_error: v = std::max(f.rho[i] / rho0 - 1.0, 0.0) * 100.0; break;
       }
       values_[i] = static_cast<float>(v);
-      if (std::isfinite(v)) vmax = std::max(vmax, v);
     }
     FrameData d;
     d.fluid_xy = as_doubles(f.x);
@@ -145,13 +177,8 @@ class FrameBuilder {
     d.boundary_xy = as_doubles(sim.boundary().x);
     d.boundary_moving = moving_;
     d.diameter = scene.spacing;
-    if (c_.fixed_range) {
-      d.lo = c_.lo;
-      d.hi = c_.hi;
-    } else {  // CFL: 0..1 (its meaningful scale); other fields: 0..max of this frame
-      d.lo = 0;
-      d.hi = c_.field == Field::cfl ? 1.0 : (vmax > 0 ? vmax : 1.0);
-    }
+    d.lo = c_.lo;
+    d.hi = c_.hi;
     char buf[160];
     std::snprintf(buf, sizeof buf, "T = %.3f S   FRAME %d   STEP %ld   ITER %d", sim.time(), frame, sim.steps(),
                   last ? last->iterations : 0);

@@ -54,7 +54,7 @@ FrameLayout fit_layout(const FrameSettings& s) {
   const double avail_w = std::max(1, s.width - strip), avail_h = std::max(1, s.height - top);
   const double sw = std::max(1e-9, s.bounds_max[0] - s.bounds_min[0]);
   const double sh = std::max(1e-9, s.bounds_max[1] - s.bounds_min[1]);
-  const double margin = kMargin * std::min(avail_w, avail_h);
+  const double margin = s.fit_margin ? kMargin * std::min(avail_w, avail_h) : 0.0;
   L.pixels_per_metre = std::max(1e-9, std::min((avail_w - 2 * margin) / sw, (avail_h - 2 * margin) / sh));
   const double cx = 0.5 * (s.bounds_min[0] + s.bounds_max[0]), cy = 0.5 * (s.bounds_min[1] + s.bounds_max[1]);
   L.view.x0 = cx - 0.5 * avail_w / L.pixels_per_metre;
@@ -78,6 +78,8 @@ namespace {
 void draw_colorbar(Image& img, const FrameLayout& L, const Colormap& cmap, double lo, double hi,
                    const std::string& title) {
   const int s = L.scale;
+  // The strip is the colorbar's own: particles outside the view window may reach it.
+  fill_rect(img, L.bar_x - 6 * s, 0, img.width - (L.bar_x - 6 * s), img.height, kBackground);
   // The bar, top = hi.
   for (int j = 0; j < L.bar_h; ++j) {
     const Rgb c = cmap.at(1.0 - (j + 0.5) / L.bar_h);
@@ -101,6 +103,7 @@ void draw_colorbar(Image& img, const FrameLayout& L, const Colormap& cmap, doubl
 
 void draw_overlay(Image& img, const FrameLayout& L, const std::string& text) {
   const int s = L.scale;
+  fill_rect(img, 0, 0, img.width, overlay_height(s), kBackground);  // the line's own band, as the colorbar's strip
   fill_rect(img, 0, 0, text_width(text, s) + 8 * s, overlay_height(s), kPanel);
   draw_text(img, 4 * s, 3 * s, text, s, kInk);
 }

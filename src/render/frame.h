@@ -19,8 +19,11 @@ struct FrameSettings {
   std::string field_label = "CFL";  // title above the colorbar
   bool colorbar = true;
   bool overlay = true;
-  // The world box to show (fitted with a margin, aspect ratio kept).
+  // The world box to show, centred with the aspect ratio kept; with fit_margin a margin
+  // of a few percent of the image surrounds it (the scene's bounds), without it the box
+  // touches the image's edges (a view window given in the scene).
   double bounds_min[2] = {0, 0}, bounds_max[2] = {1, 1};
+  bool fit_margin = true;
 };
 
 struct FrameData {

@@ -423,6 +423,45 @@ OutputSettings read_output(Reader& r, const Context& ctx, const std::string& nam
   return o;
 }
 
+RenderSettings read_render(Reader& r, const Context& ctx) {
+  RenderSettings s;
+  if (const json* res = r.find("resolution")) {
+    const std::string path = r.at("resolution");
+    if (!res->is_array() || res->size() != 2) ctx.fail(path, "expected [width, height] in pixels, got " + show(*res));
+    s.width = ctx.integer((*res)[0], path + "/0", 2, 16384);
+    s.height = ctx.integer((*res)[1], path + "/1", 2, 16384);
+  }
+  r.resolved()["resolution"] = {s.width, s.height};
+  s.color_by = r.choice("color_by", {"cfl", "speed", "pressure", "density_error"}, "cfl");
+  s.colormap = r.choice("colormap", {"spectrum", "viridis", "turbo"}, "spectrum");
+  const json* range = r.find("range");
+  if (range && !range->is_null()) {
+    const Vec2 lohi = ctx.vec2(*range, r.at("range"));
+    if (!(lohi.y() > lohi.x()))
+      ctx.fail(r.at("range"), "range " + show(*range) + " must be [lo, hi] with lo < hi (in the units of color_by), or null for automatic");
+    s.fixed_range = true;
+    s.range_lo = lohi.x();
+    s.range_hi = lohi.y();
+  }
+  r.resolved()["range"] = s.fixed_range ? json{s.range_lo, s.range_hi} : json(nullptr);
+  const json* view = r.find("view");
+  if (view && !view->is_null()) {
+    Reader v(ctx, view, r.at("view"));
+    s.view_min = v.vec2("min");
+    s.view_max = v.vec2("max");
+    v.finish();
+    if (!(s.view_max.x() > s.view_min.x() && s.view_max.y() > s.view_min.y()))
+      ctx.fail(v.at("max"), "max [" + num(s.view_max.x()) + ", " + num(s.view_max.y()) + "] must be above min [" +
+                                num(s.view_min.x()) + ", " + num(s.view_min.y()) + "] in x and y");
+    s.fixed_view = true;
+    r.resolved()["view"] = v.resolved();
+  } else {
+    r.resolved()["view"] = nullptr;
+  }
+  r.finish();
+  return s;
+}
+
 shapes::FluidShape read_fluid_block(Reader& r, const Context& ctx) {
   shapes::FluidShape f;
   const std::string shape = r.choice("shape", {"rectangle", "ellipse", "polygon"}, nullptr);
@@ -569,7 +608,8 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
   // anything that depends on it.
   const json* name = top.find("name");
   const json* spacing = top.find("spacing");
-  const json* sections[4] = {top.find("solver"), top.find("time"), top.find("stability"), top.find("output")};
+  const json* sections[5] = {top.find("solver"), top.find("time"), top.find("stability"), top.find("output"),
+                             top.find("render")};
   const json* fluid = top.find("fluid");
   const json* boundaries = top.find("boundaries");
   top.finish();
@@ -602,6 +642,11 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
     Reader r(ctx, sections[3], "/output");
     scene.output = read_output(r, ctx, scene.name);
     resolved["output"] = r.resolved();
+  }
+  {
+    Reader r(ctx, sections[4], "/render");
+    scene.render = read_render(r, ctx);
+    resolved["render"] = r.resolved();
   }
 
   // Shapes.

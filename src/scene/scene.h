@@ -34,6 +34,18 @@ struct OutputSettings {
   std::vector<std::string> export_formats;  // subset of {"csv", "vtk"}
 };
 
+// The `render` section: how `sluice render` and `still` draw the scene when no flag says
+// otherwise. Names are validated here; the renderer maps them to its own types.
+struct RenderSettings {
+  int width = 1280, height = 720;
+  std::string color_by = "cfl";      // cfl | speed | pressure | density_error
+  std::string colormap = "spectrum"; // spectrum | viridis | turbo
+  bool fixed_range = false;          // false: automatic (fixed for the run, from the scene)
+  double range_lo = 0, range_hi = 1;
+  bool fixed_view = false;           // false: the scene's bounds at t = 0 with a margin
+  Vec2 view_min{0, 0}, view_max{1, 1};
+};
+
 struct Scene {
   std::string file;    // path as given (for messages)
   std::string name;    // "name" key, or the file's stem
@@ -42,6 +54,7 @@ struct Scene {
   TimeSettings time;
   StabilityLimits limits;
   OutputSettings output;
+  RenderSettings render;
 
   std::vector<Vec2> fluid_x, fluid_v;      // initial fluid particles
   std::vector<Vec2> boundary_x;            // all boundary samples
