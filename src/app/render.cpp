@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <memory>
 #include <stdexcept>
 
 #include "app/commands.h"
@@ -148,11 +149,10 @@ std::span<const double> as_doubles(const std::vector<Vec2>& v) {
 // Per-frame particle arrays of a simulation, in the renderer's terms.
 class FrameBuilder {
  public:
-  FrameBuilder(const ImageConfig& c, const Scene& scene) : c_(c) {
-    moving_.resize(scene.boundary_x.size(), 0);
-    for (const BoundaryObject& obj : scene.objects)
-      if (obj.moving)
-        std::fill(moving_.begin() + obj.first, moving_.begin() + obj.first + obj.count, std::uint8_t{1});
+  FrameBuilder(const ImageConfig& c, const Simulation& sim) : c_(c) {
+    // The simulation keeps boundary samples in its own (spatial) order.
+    const BoundaryParticles& b = sim.boundary();
+    moving_.assign(b.moving.begin(), b.moving.end());
   }
 
   FrameData build(const Simulation& sim, Index frame, const StepStats* last) {
@@ -250,7 +250,7 @@ int run_render(const RenderOptions& o) {
   if (!o.quiet)
     std::fprintf(stderr, "sluice: rendering %dx%d with %s\n", config.frame.width, config.frame.height,
                  renderer.description().c_str());
-  FrameBuilder builder(config, scene);
+  std::unique_ptr<FrameBuilder> builder;
   FrameWriter writer;
   Image image;
   Index rendered = 0;
@@ -258,7 +258,8 @@ int run_render(const RenderOptions& o) {
   auto on_frame = [&](const Simulation& sim, Index frame, const StepStats* st) {
     if (frame < first || frame > last) return;
     const auto t0 = std::chrono::steady_clock::now();
-    renderer.render(builder.build(sim, frame, st), image);
+    if (!builder) builder = std::make_unique<FrameBuilder>(config, sim);
+    renderer.render(builder->build(sim, frame, st), image);
     writer.write((frames_dir / frame_file(frame)).string(), image);
     ms_render += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     ++rendered;
@@ -296,8 +297,8 @@ int run_still(const StillOptions& o) {
   const fs::path out = o.output.empty() ? fs::path(scene.output.directory) / "still.png" : fs::path(o.output);
   if (out.has_parent_path()) make_directory(out.parent_path());
   FrameRenderer renderer(config.frame);
-  FrameBuilder builder(config, scene);
   Simulation sim(scene);
+  FrameBuilder builder(config, sim);
   StepStats st;
   bool stepped = false;
   while (o.time > 0 && !sim.finished()) {

@@ -47,7 +47,7 @@ struct RunTotals {
   double sum_avg_error = 0;
   double max_error = 0;
   double sum_density_error = 0;
-  double sum_ms[5] = {0, 0, 0, 0, 0};  // neighbours, non-pressure, pressure, integration, total
+  double sum_ms[6] = {0, 0, 0, 0, 0, 0};  // neighbours, non-pressure, pressure, integration, total, moving boundaries
 
   void add(const StepStats& s);
   nlohmann::json to_json(long fluid_particles) const;

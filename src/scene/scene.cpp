@@ -54,6 +54,7 @@ struct Range {
   bool lo_open = false, hi_open = false;
   std::string unit;
 
+  static Range any(std::string unit = "") { return {-kInf, kInf, false, false, std::move(unit)}; }
   static Range positive(std::string unit = "") { return {0, kInf, true, false, std::move(unit)}; }
   static Range at_least(double lo, std::string unit = "") { return {lo, kInf, false, false, std::move(unit)}; }
   static Range open_closed(double lo, double hi, std::string unit = "") { return {lo, hi, true, false, std::move(unit)}; }
@@ -63,7 +64,8 @@ struct Range {
   }
   std::string describe() const {
     std::string s;
-    if (hi == kInf) s = std::string("must be ") + (lo_open ? "> " : ">= ") + num(lo);
+    if (hi == kInf && lo == -kInf) s = "must be a finite number";
+    else if (hi == kInf) s = std::string("must be ") + (lo_open ? "> " : ">= ") + num(lo);
     else s = "must be in " + std::string(lo_open ? "(" : "[") + num(lo) + ", " + num(hi) + (hi_open ? ")" : "]");
     return unit.empty() ? s : s + " " + unit;
   }
@@ -514,8 +516,101 @@ std::vector<double> read_segment_spacing(Reader& r, const Context& ctx, std::siz
   return std::vector<double>(segments, ctx.number(*v, r.at("spacing"), range));
 }
 
-shapes::BoundaryShape read_boundary(Reader& r, const Context& ctx, std::size_t index, double h, std::string& name,
-                                    std::string& shape) {
+// One scripted motion component (see motion.h); the object at rest is its shape as given.
+MotionComponent read_motion_component(Reader& r, const Context& ctx) {
+  MotionComponent m;
+  const std::string type = r.choice("type", {"rotation", "translation", "oscillation", "keyframes"}, nullptr);
+  if (type != "keyframes") m.start = r.number("start", 0.0, Range::at_least(0, "[s]"));
+  if (type == "rotation") {
+    m.kind = MotionComponent::Kind::Rotation;
+    m.pivot = r.vec2("pivot");
+    m.omega = r.number("angular_velocity", Range::any("[rad/s], > 0 counter-clockwise"));
+    m.ramp = r.number("ramp", 0.0, Range::at_least(0, "[s]"));
+  } else if (type == "translation") {
+    m.kind = MotionComponent::Kind::Translation;
+    m.velocity = r.vec2("velocity");
+    const json* end = r.find("end");
+    m.end = kInf;
+    if (end && !end->is_null()) {
+      m.end = ctx.number(*end, r.at("end"), Range::at_least(0, "[s]"));
+      if (m.end < m.start)
+        ctx.fail(r.at("end"), "end " + num(m.end) + " s is before start " + num(m.start) + " s; need start <= end, or null for no end");
+    }
+    r.resolved()["end"] = std::isfinite(m.end) ? json(m.end) : json(nullptr);
+  } else if (type == "oscillation") {
+    m.kind = MotionComponent::Kind::Oscillation;
+    m.period = r.number("period", Range::positive("[s]"));
+    m.phase = r.number("phase", 0.0, Range::any("[rad]"));
+    const json* amp = r.find("amplitude");
+    const json* ang = r.find("angular_amplitude");
+    if ((amp != nullptr) == (ang != nullptr))
+      ctx.fail(r.path(), "give exactly one of \"amplitude\" (a shift along direction, [m]) and \"angular_amplitude\" (a rotation about pivot, [rad])");
+    if (amp) {
+      m.amplitude = ctx.number(*amp, r.at("amplitude"), Range::at_least(0, "[m]"));
+      r.resolved()["amplitude"] = m.amplitude;
+      const json* dir = r.find("direction");
+      const json* angle = r.find("angle");
+      if (dir && angle) ctx.fail(r.path(), "give at most one of \"direction\" ([x, y]) and \"angle\" ([rad] from the x axis)");
+      if (angle) {
+        const double a = ctx.number(*angle, r.at("angle"), Range::any("[rad]"));
+        m.direction = {std::cos(a), std::sin(a)};
+      } else if (dir) {
+        m.direction = ctx.vec2(*dir, r.at("direction"));
+        if (m.direction.norm() == 0) ctx.fail(r.at("direction"), "the direction [0, 0] has no length; give a non-zero vector");
+        m.direction.normalize();
+      }
+      r.resolved()["direction"] = {m.direction.x(), m.direction.y()};
+    } else {
+      m.angular_amplitude = ctx.number(*ang, r.at("angular_amplitude"), Range::any("[rad]"));
+      r.resolved()["angular_amplitude"] = m.angular_amplitude;
+      m.pivot = r.vec2("pivot");
+    }
+  } else {
+    m.kind = MotionComponent::Kind::Keyframes;
+    m.smooth = r.choice("interpolation", {"linear", "smooth"}, "linear") == "smooth";
+    m.pivot = r.vec2("pivot", Vec2::Zero());
+    const json& keys = r.require("keys", "an array of at least 2 keys {\"time\", \"offset\", \"angle\"}");
+    if (!keys.is_array() || keys.size() < 2)
+      ctx.fail(r.at("keys"), "expected an array of at least 2 keys {\"time\", \"offset\", \"angle\"}, got " + show(keys));
+    json resolved_keys = json::array();
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      Reader k(ctx, &keys[i], r.at("keys") + "/" + std::to_string(i));
+      MotionComponent::Key key;
+      key.time = k.number("time", Range::at_least(0, "[s]"));
+      key.offset = k.vec2("offset", Vec2::Zero());
+      key.angle = k.number("angle", 0.0, Range::any("[rad]"));
+      k.finish();
+      if (i > 0 && !(key.time > m.keys.back().time))
+        ctx.fail(k.at("time"), "time " + num(key.time) + " s is not after the previous key's " + num(m.keys.back().time) +
+                                   " s; key times must increase");
+      m.keys.push_back(key);
+      resolved_keys.push_back(k.resolved());
+    }
+    r.resolved()["keys"] = resolved_keys;
+  }
+  r.finish();
+  return m;
+}
+
+// "motion": one component or an array of them, applied in order.
+Motion read_motion(const json& v, const std::string& path, const Context& ctx, json& resolved) {
+  Motion motion;
+  const bool single = v.is_object();
+  if (!single && !v.is_array())
+    ctx.fail(path, "expected a motion object or an array of them (types: rotation, translation, oscillation, keyframes), got " + show(v));
+  const std::size_t n = single ? 1 : v.size();
+  resolved = json::array();
+  for (std::size_t i = 0; i < n; ++i) {
+    Reader r(ctx, single ? &v : &v[i], single ? path : path + "/" + std::to_string(i));
+    motion.components.push_back(read_motion_component(r, ctx));
+    resolved.push_back(r.resolved());
+  }
+  return motion;
+}
+
+shapes::BoundaryShape read_boundary(Reader& r, const Context& ctx, std::size_t index, double h, BoundaryObject& obj) {
+  std::string& name = obj.name;
+  std::string& shape = obj.shape;
   shapes::BoundaryShape b;
   shape = r.choice("shape", {"box", "polyline", "polygon", "circle", "ellipse"}, nullptr);
   name = r.string("name", shape + std::to_string(index));
@@ -578,6 +673,12 @@ shapes::BoundaryShape read_boundary(Reader& r, const Context& ctx, std::size_t i
   b.layers = r.integer("layers", 2, 1, 1000);
   b.layer_spacing = r.number("layer_spacing", h, Range::positive("[m]"));
   b.surface_offset = r.number("surface_offset", 0.5, Range::at_least(0, "(in layer spacings)"));
+  if (const json* m = r.find("motion"); m && !m->is_null()) {
+    obj.motion = read_motion(*m, r.at("motion"), ctx, r.resolved()["motion"]);
+    obj.moving = true;
+  } else {
+    r.resolved()["motion"] = nullptr;
+  }
   r.finish();
 
   // Guard against absurd sample counts (e.g. a spacing typo).
@@ -667,7 +768,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
   for (std::size_t i = 0; boundaries && i < boundaries->size(); ++i) {
     Reader r(ctx, &(*boundaries)[i], "/boundaries/" + std::to_string(i));
     BoundaryObject obj;
-    walls.push_back(read_boundary(r, ctx, i, h, obj.name, obj.shape));
+    walls.push_back(read_boundary(r, ctx, i, h, obj));
     if (!names.insert(obj.name).second)
       ctx.fail(r.at("name"), "duplicate name \"" + obj.name + "\"; boundary names must be unique");
     resolved["boundaries"].push_back(r.resolved());

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/motion.h"
 #include "sim/settings.h"
 #include "sim/types.h"
 
@@ -24,7 +25,8 @@ class SceneError : public std::runtime_error {
 struct BoundaryObject {
   std::string name;   // "name" key, or "<shape><index>"
   std::string shape;  // box | polyline | polygon | circle | ellipse
-  bool moving = false;  // reserved for scripted motion; false: volumes computed once
+  bool moving = false;  // has a scripted motion; false: a wall at rest (volumes computed once)
+  Motion motion;        // pose over time; boundary_x holds the samples at rest (identity pose)
   Index first = 0;
   Index count = 0;
 };

@@ -1,6 +1,7 @@
 #pragma once
 // Particle storage as structure-of-arrays. All per-particle arrays of a set are
 // reordered together after a spatial sort (see Simulation::reorder).
+#include <cstdint>
 #include <vector>
 
 #include "sim/types.h"
@@ -33,6 +34,9 @@ struct FluidParticles {
 
 struct BoundaryParticles {
   std::vector<Vec2> x, v;        // position [m], velocity [m/s] (zero for walls at rest)
+  std::vector<Vec2> a;           // acceleration [m/s^2] (Eq. 25 uses g - a_b)
+  std::vector<Vec2> x0;          // position at rest (the scene's sample; identity pose)
+  std::vector<std::uint8_t> moving;  // 1: on an object with a scripted motion
   std::vector<double> volume;    // V_b = gamma1 / sum_b W (section 4.1) [m^2]
   std::vector<double> p;         // extrapolated pressure (Eq. 25) [Pa m]
   std::vector<Index> object;     // index of the scene's boundary object

@@ -1,6 +1,7 @@
 #include "sim/simulation.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -63,19 +64,39 @@ Simulation::Simulation(const Scene& scene)
     fluid_.id[i] = i;
   }
 
-  // Boundary particles in spatial order, once: they never move (yet).
+  // Boundary particles in spatial order, once. Moving ones keep their rest position x0
+  // and get their pose from the script every step.
   const std::vector<Index> order = spatial_order(scene.boundary_x, kernel_.support());
   const Index nb = static_cast<Index>(order.size());
   boundary_.x.resize(nb);
   boundary_.object.resize(nb);
+  boundary_.moving.assign(nb, 0);
   for (Index k = 0; k < nb; ++k) {
     boundary_.x[k] = scene.boundary_x[order[k]];
     boundary_.object[k] = scene.boundary_object.empty() ? 0 : scene.boundary_object[order[k]];
+    if (boundary_.object[k] < static_cast<Index>(scene.objects.size()) && scene.objects[boundary_.object[k]].moving) {
+      boundary_.moving[k] = 1;
+      moving_.push_back(k);
+    }
   }
+  boundary_.x0 = boundary_.x;
   boundary_.v.assign(nb, Vec2::Zero());
+  boundary_.a.assign(nb, Vec2::Zero());
   boundary_.p.assign(nb, 0.0);
-  boundary_grid_.build(boundary_.x, kernel_.support(), /*cells_per_point=*/1024.0);  // built once
-  compute_boundary_volumes();
+  boundary_.volume.assign(nb, 0.0);
+  near_moving_.assign(nb, 0);
+  if (has_moving_boundaries()) {
+    move_boundaries(0.0);  // the pose at t = 0 (a script may start displaced), grid, volumes
+    volume_update_.resize(static_cast<size_t>(nb));
+    for (Index b = 0; b < nb; ++b) volume_update_[b] = b;
+    compute_volumes(boundary_grid_, volume_update_, boundary_.volume);
+  } else {
+    // Walls at rest: a grid with many cells per point (built once) and volumes once.
+    boundary_grid_.build(boundary_.x, kernel_.support(), /*cells_per_point=*/1024.0);
+    std::vector<Index> all(static_cast<size_t>(nb));
+    for (Index b = 0; b < nb; ++b) all[b] = b;
+    compute_volumes(boundary_grid_, all, boundary_.volume);
+  }
 
   const Vec2 size = (scene.bounds_max - scene.bounds_min).cwiseMax(Vec2::Constant(scene.spacing));
   const double margin = scene.limits.bounds_margin * size.maxCoeff();
@@ -88,18 +109,102 @@ Simulation::Simulation(const Scene& scene)
 }
 
 // Section 4.1: V_b = gamma1 / sum_b' W(x_bb'), summed over all boundary particles of
-// every object (self included), so touching objects share their volume.
-void Simulation::compute_boundary_volumes() {
-  const Index nb = boundary_.size();
-  boundary_.volume.resize(nb);
-  NeighborLists bb;
-  find_neighbors(boundary_.x, boundary_grid_, kernel_, /*exclude_self=*/true, {.grad = false, .w = true}, bb);
-  const double w0 = kernel_.W(0.0);
-  parallel_for(nb, [&](Index b) {
-    double sum = w0;
-    for (Index k = bb.offset[b]; k < bb.offset[b + 1]; ++k) sum += bb.w[k];
-    boundary_.volume[b] = settings_.gamma1 / sum;
+// every object (self included), so touching and overlapping objects share their volume.
+// Each sum runs in ascending index order, whatever the grid's layout (which follows the
+// moving samples), so a volume kept from an earlier step has the same bits as one
+// computed from scratch now.
+void Simulation::compute_volumes(const SpatialHashGrid& grid, const std::vector<Index>& which,
+                                 std::vector<double>& volume) const {
+  const double r = kernel_.support(), w0 = kernel_.W(0.0), gamma1 = settings_.gamma1;
+  const std::vector<Vec2>& x = grid.points();
+  const Index n = static_cast<Index>(which.size());
+#pragma omp parallel
+  {
+    std::vector<Index> near;
+#pragma omp for schedule(static, kForChunk)
+    for (Index k = 0; k < n; ++k) {
+      const Index b = which[k];
+      const Vec2 xb = x[b];
+      const size_t count = grid.gather_within(xb, r, b, near, 0);
+      std::sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(count));
+      double sum = w0;
+      for (size_t m = 0; m < count; ++m) sum += kernel_.W((xb - x[near[m]]).norm());
+      volume[b] = gamma1 / sum;
+    }
+  }
+}
+
+std::vector<double> Simulation::boundary_volumes_from_scratch() const {
+  std::vector<Index> all(static_cast<size_t>(boundary_.size()));
+  for (Index b = 0; b < boundary_.size(); ++b) all[b] = b;
+  SpatialHashGrid grid;
+  grid.build(boundary_.x, kernel_.support());
+  std::vector<double> volume(all.size(), 0.0);
+  compute_volumes(grid, all, volume);
+  return volume;
+}
+
+// Scripted motion (chapter 4, dynamic boundaries): every moving sample gets its position
+// and acceleration from its object's pose at the step's time t, and the velocity at
+// t + dt/2, the mean velocity over the step to second order, which the source term
+// (Eq. 16/19) and viscosity use to predict where the boundary is at t + dt. Positions
+// come from the script at t, never from accumulated increments.
+void Simulation::move_boundaries(double dt) {
+  std::vector<Pose> now(scene_.objects.size()), mid(scene_.objects.size());
+  for (size_t o = 0; o < scene_.objects.size(); ++o)
+    if (scene_.objects[o].moving) {
+      now[o] = scene_.objects[o].motion.at(time_);
+      mid[o] = scene_.objects[o].motion.at(time_ + 0.5 * dt);
+    }
+  parallel_for(static_cast<Index>(moving_.size()), [&](Index k) {
+    const Index b = moving_[k];
+    const Index o = boundary_.object[b];
+    const Vec2 x0 = boundary_.x0[b];
+    boundary_.x[b] = now[o].position(x0);
+    boundary_.v[b] = mid[o].velocity(x0);
+    boundary_.a[b] = now[o].acceleration(x0);
   });
+  // The grid is rebuilt with every step's positions (few cells per point, as the
+  // fluid's); the static walls ride along.
+  boundary_grid_.build(boundary_.x, kernel_.support());
+}
+
+// Section 4.1 for the samples whose boundary neighbourhood may have changed since the
+// last step: every moving sample, and every static one with a moving sample in its
+// support now or at the last update. Static walls far from any moving part keep their
+// volumes.
+void Simulation::update_boundary_volumes() {
+  const double r = kernel_.support();
+  const Index nm = static_cast<Index>(moving_.size());
+  std::vector<std::uint8_t> near_now(near_moving_.size(), 0);
+#pragma omp parallel
+  {
+    std::vector<Index> near;
+#pragma omp for schedule(static, kForChunk)
+    for (Index k = 0; k < nm; ++k) {
+      const Index b = moving_[k];
+      const size_t count = boundary_grid_.gather_within(boundary_.x[b], r, b, near, 0);
+      for (size_t m = 0; m < count; ++m)  // every writer stores 1: the result is order-free
+        std::atomic_ref<std::uint8_t>(near_now[near[m]]).store(1, std::memory_order_relaxed);
+    }
+  }
+  volume_update_.clear();
+  for (Index b = 0; b < boundary_.size(); ++b)
+    if (boundary_.moving[b] || near_now[b] || near_moving_[b]) volume_update_.push_back(b);
+  near_moving_.swap(near_now);
+  compute_volumes(boundary_grid_, volume_update_, boundary_.volume);
+}
+
+double Simulation::max_boundary_speed() const {
+  double vmax = 0.0;
+  for (size_t o = 0; o < scene_.objects.size(); ++o) {
+    const BoundaryObject& obj = scene_.objects[o];
+    if (!obj.moving) continue;
+    const Pose pose = obj.motion.at(time_);
+    for (Index k = 0; k < obj.count; ++k)
+      vmax = std::max(vmax, pose.velocity(scene_.boundary_x[obj.first + k]).squaredNorm());
+  }
+  return std::sqrt(vmax);
 }
 
 void Simulation::reorder_fluid() {
@@ -136,6 +241,12 @@ StepStats Simulation::step() {
   const double dt = remaining / n_steps;
   st.dt = dt;
 
+  if (has_moving_boundaries()) {
+    const Stopwatch t;
+    move_boundaries(dt);
+    update_boundary_volumes();
+    st.ms_boundary = t.ms();
+  }
   {
     // Algorithm 2's first loop: neighbours and density (with the periodic spatial sort).
     const Stopwatch t;
@@ -189,7 +300,9 @@ double Simulation::choose_time_step() const {
   const TimeSettings& ts = scene_.time;
   if (ts.dt > 0) return ts.dt;
   const Index n = fluid_.size();
-  const double vmax = std::sqrt(parallel_max(n, 0.0, [&](Index i) { return fluid_.v[i].squaredNorm(); }));
+  // Moving boundary samples must not outrun the fluid's CFL bound either.
+  const double vmax = std::max(std::sqrt(parallel_max(n, 0.0, [&](Index i) { return fluid_.v[i].squaredNorm(); })),
+                               max_boundary_speed());
   double dt = ts.dt_max;
   if (vmax > 0) dt = std::min(dt, ts.cfl * scene_.spacing / vmax);
   if (dt < ts.dt_min) {
@@ -282,7 +395,8 @@ void Simulation::apply_nonpressure(double dt) {
 
 // Per-step boundary quantities of the pressure solvers:
 //   grad_b_i = sum_b m_b grad W_ib (Eq. 24 and Eq. 26 boundary sums),
-//   for Eq. 25: sum_f W_bf and g . sum_f rho_f x_bf W_bf.
+//   for Eq. 25: sum_f W_bf and (g - a_b) . sum_f rho_f x_bf W_bf, the hydrostatic term
+//   in the frame of a boundary sample that accelerates with a_b.
 void Simulation::prepare_boundary_terms() {
   const Index n = fluid_.size(), nb = boundary_.size();
   const double rho0 = settings_.rest_density;
@@ -306,12 +420,12 @@ void Simulation::prepare_boundary_terms() {
       xr += (fluid_.rho[f] * bf_.w[k]) * (boundary_.x[b] - fluid_.x[f]);
     }
     scratch_.ext_wsum[b] = ws;
-    scratch_.ext_gravity[b] = gravity.dot(xr);
+    scratch_.ext_gravity[b] = (gravity - boundary_.a[b]).dot(xr);  // an accelerating wall: g - a_b
   });
 }
 
 // Boundary pressure seen by fluid neighbours, as p_b / rho_b^2 (rho_b = rho0):
-// extrapolation, Eq. 25: p_b = (sum_f p_f W_bf + g . sum_f rho_f x_bf W_bf) / sum_f W_bf,
+// extrapolation, Eq. 25: p_b = (sum_f p_f W_bf + (g - a_b) . sum_f rho_f x_bf W_bf) / sum_f W_bf,
 // clamped at zero like fluid pressures. Mirroring and zero pressure need no pass.
 void Simulation::update_boundary_pressure() {
   if (settings_.boundary_pressure != BoundaryPressure::Extrapolation) return;
@@ -392,6 +506,7 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
   const double c = (mirror && s.boundary_diagonal) ? 2.0 : 1.0;
   const bool coupling = extrapolate && s.boundary_diagonal;
   const bool thesis_init = s.pressure_init == PressureInit::Thesis;
+  const double vb_scale = boundary_velocity_in_source_ ? 1.0 : 0.0;
 
   // Source term s_i (Eq. 19), diagonal a_ii (Eq. 26), initial pressure p^(0) (Eq. 21).
   parallel_for(n, [&](Index i) {
@@ -412,7 +527,7 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
     for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
       const Index b = fb_.j[k];
       const double mb = rho0 * boundary_.volume[b];
-      div_b += mb * (vi - boundary_.v[b]).dot(fb_.grad[k]);
+      div_b += mb * (vi - vb_scale * boundary_.v[b]).dot(fb_.grad[k]);
       if (coupling && scratch_.ext_wsum[b] > 0.0) e += (mb * fb_.w[k] / scratch_.ext_wsum[b]) * fb_.grad[k];
     }
     scratch_.s[i] = (rho0 - rhoi) / dt - (div + g2 * div_b);

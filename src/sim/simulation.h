@@ -59,6 +59,13 @@ class Simulation {
 
   // Test and benchmark hooks.
   void set_brute_force_neighbors(bool on) { brute_force_ = on; }
+  // Off: the boundary velocity is left out of the IISPH source term (Eq. 16/19), as in
+  // the thesis' own code; only to show that the term matters (tests).
+  void set_boundary_velocity_in_source(bool on) { boundary_velocity_in_source_ = on; }
+  // Volumes of section 4.1 of every boundary particle from scratch at the current
+  // positions (the reference for the incremental update of moving boundaries).
+  std::vector<double> boundary_volumes_from_scratch() const;
+  bool has_moving_boundaries() const { return !moving_.empty(); }
   SolverSettings& solver_settings() { return settings_; }
 
   // Density (Eq. 13 with the boundary term of section 4.1) of every fluid particle,
@@ -82,7 +89,12 @@ class Simulation {
   void update_boundary_pressure();            // Eq. 25 / 4.2.2 / 4.2.3 -> pb_over_rho2
   void compute_pressure_acceleration();       // Eq. 24 -> a_p
 
-  void compute_boundary_volumes();            // section 4.1
+  // Boundaries (chapter 4).
+  void move_boundaries(double dt);            // scripted poses at time_ -> x, v, a of moving samples
+  void update_boundary_volumes();             // section 4.1 where the neighbourhood can change
+  // Section 4.1 for the samples `which`, over the grid's points.
+  void compute_volumes(const SpatialHashGrid& grid, const std::vector<Index>& which, std::vector<double>& volume) const;
+  double max_boundary_speed() const;          // fastest moving sample at time_ (for Eq. 14)
 
   Scene scene_;
   SolverSettings settings_;
@@ -96,6 +108,14 @@ class Simulation {
   NeighborLists ff_, fb_, bf_;  // fluid-fluid, fluid-boundary, boundary-fluid (transpose of fb)
   SolverScratch scratch_;
   bool brute_force_ = false;
+  bool boundary_velocity_in_source_ = true;
+
+  // Moving boundaries: the samples on moving objects, and the static samples whose
+  // kernel support held a moving sample at the last update (their volumes must be
+  // recomputed once more when it leaves).
+  std::vector<Index> moving_;
+  std::vector<std::uint8_t> near_moving_;
+  std::vector<Index> volume_update_;  // scratch: samples whose volume is recomputed this step
 
   double time_ = 0;
   long step_ = 0;

@@ -17,7 +17,8 @@ struct StepStats {
   Index fluid_particles = 0;
   Index frame = -1;            // frame index when the step landed on a frame time, else -1
   // wall-clock milliseconds per phase
-  double ms_neighbors = 0, ms_nonpressure = 0, ms_pressure = 0, ms_integrate = 0, ms_total = 0;
+  // (ms_boundary: moving boundaries: poses, their grid and the volume updates of 4.1)
+  double ms_neighbors = 0, ms_nonpressure = 0, ms_pressure = 0, ms_integrate = 0, ms_total = 0, ms_boundary = 0;
 };
 
 }  // namespace sluice
