@@ -1,5 +1,6 @@
-// Image regression of the headless renderer: a 300-particle dam break rendered at
-// 320x180 and compared with golden PNGs in tests/golden/.
+// Image regression of the headless renderer: frames of a 300-particle dam break and of
+// a swinging paddle, rendered at 320x180 through the program's own path (src/view) and
+// compared with golden PNGs in tests/golden/.
 //
 // Tolerance: at most 0.5% of the pixels may differ by more than 8 levels in a channel.
 // Mesa's llvmpipe renders bit-identically (CI); a GPU driver may differ by a few levels
@@ -18,6 +19,7 @@
 #include "render/image.h"
 #include "scene/scene.h"
 #include "sim/simulation.h"
+#include "view/scene_view.h"
 
 namespace sluice {
 namespace {
@@ -37,35 +39,6 @@ const char* kScene = R"({
 
 constexpr int kTolerance = 8;
 constexpr double kMaxFraction = 0.005;
-
-struct Case {
-  const char* golden;
-  Index frame;
-  ColormapName colormap;
-  bool speed;  // colour by speed (0..max) instead of CFL (0..1)
-  int msaa;
-};
-
-FrameData frame_data(const Simulation& sim, const StepStats& last, bool speed, std::vector<float>& values) {
-  const FluidParticles& f = sim.fluid();
-  values.resize(f.x.size());
-  double vmax = 0;
-  for (size_t i = 0; i < values.size(); ++i) {
-    const double v = speed ? f.v[i].norm() : f.v[i].norm() * last.dt / sim.scene().spacing;
-    values[i] = static_cast<float>(v);
-    vmax = std::max(vmax, v);
-  }
-  FrameData d;
-  d.fluid_xy = {f.x.front().data(), 2 * f.x.size()};
-  d.fluid_value = values;
-  d.boundary_xy = {sim.boundary().x.front().data(), 2 * sim.boundary().x.size()};
-  d.diameter = sim.scene().spacing;
-  d.hi = speed ? (vmax > 0 ? vmax : 1.0) : 1.0;
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "T = %.3f S   FRAME %d   STEP %ld", sim.time(), sim.frame(), sim.steps());
-  d.overlay = buf;
-  return d;
-}
 
 void check_against_golden(const Image& actual, const std::string& name) {
   const fs::path golden = fs::path(SLUICE_SOURCE_DIR) / "tests" / "golden" / name;
@@ -90,37 +63,64 @@ void check_against_golden(const Image& actual, const std::string& name) {
                 << "\n  golden: " << golden;
 }
 
-TEST(RenderGolden, DamBreakFrames) {
-  const Case cases[] = {
-      {"render_frame0_cfl_spectrum.png", 0, ColormapName::spectrum, false, 0},
-      {"render_frame3_cfl_spectrum.png", 3, ColormapName::spectrum, false, 0},
-      {"render_frame6_speed_turbo_msaa4.png", 6, ColormapName::turbo, true, 4},
-  };
-  const Scene scene = parse_scene(kScene, "render_test.json");
-  ASSERT_GT(scene.fluid_x.size(), 200u);
+// Renders frames of `scene` through the program's own path (image options over the
+// scene's render section, automatic range, FrameBuilder) and compares each with its golden.
+struct Case {
+  const char* golden;
+  Index frame;
+  view::ImageOptions options;
+};
+
+void check_frames(const Scene& scene, const std::vector<Case>& cases) {
   Simulation sim(scene);
   StepStats last;
-  last.dt = scene.time.dt;
-  std::vector<float> values;
+  bool stepped = false;
   for (const Case& c : cases) {
-    while (sim.frame() < c.frame) last = sim.step();
-    FrameSettings s;
-    s.width = 320;
-    s.height = 180;
-    s.msaa = c.msaa;
-    s.colormap = c.colormap;
-    s.field_label = c.speed ? "SPEED M/S" : "CFL";
-    s.bounds_min[0] = scene.bounds_min.x();
-    s.bounds_min[1] = scene.bounds_min.y();
-    s.bounds_max[0] = scene.bounds_max.x();
-    s.bounds_max[1] = scene.bounds_max.y();
-    FrameRenderer renderer(s);  // throws RenderError naming every EGL platform tried
+    while (sim.frame() < c.frame) {
+      last = sim.step();
+      stepped = true;
+    }
+    const view::ImageConfig config = view::resolve_image(c.options, scene);
+    FrameRenderer renderer(config.frame);  // throws RenderError naming every EGL platform tried
+    view::FrameBuilder builder(config, sim);
     Image img;
-    renderer.render(frame_data(sim, last, c.speed, values), img);
-    ASSERT_EQ(img.width, 320);
-    ASSERT_EQ(img.height, 180);
+    renderer.render(builder.build(sim, sim.frame(), stepped ? &last : nullptr), img);
+    ASSERT_EQ(img.width, config.frame.width);
+    ASSERT_EQ(img.height, config.frame.height);
     check_against_golden(img, c.golden);
   }
+}
+
+view::ImageOptions options(const char* color_by, const char* colormap, int msaa) {
+  view::ImageOptions o;
+  o.resolution = "320x180";
+  o.color_by = color_by;
+  o.colormap = colormap;
+  o.msaa = msaa;
+  return o;
+}
+
+TEST(RenderGolden, DamBreakFrames) {
+  const Scene scene = parse_scene(kScene, "render_test.json");
+  ASSERT_GT(scene.fluid_x.size(), 200u);
+  check_frames(scene, {{"render_frame0_cfl_spectrum.png", 0, options("cfl", "spectrum", 0)},
+                       {"render_frame3_cfl_spectrum.png", 3, options("cfl", "spectrum", 0)},
+                       {"render_frame6_speed_turbo_msaa4.png", 6, options("speed", "turbo", 4)}});
+}
+
+// A moving boundary (a paddle swinging into the fluid) drawn in its own colour, a view
+// window from the scene's render section, pressure on viridis with the automatic range.
+TEST(RenderGolden, MovingBoundaryAndViewWindow) {
+  const Scene scene = parse_scene(R"({
+    "spacing": 0.01, "time": {"duration": 0.3, "fps": 20, "dt": 1e-3},
+    "render": {"resolution": [320, 180], "view": {"min": [0, 0], "max": [0.32, 0.18]}, "color_by": "pressure", "colormap": "viridis"},
+    "fluid": [{"shape": "rectangle", "min": [0.06, 0], "max": [0.4, 0.12]}],
+    "boundaries": [{"name": "tank", "shape": "box", "min": [0, 0], "max": [0.4, 0.25]},
+                   {"name": "paddle", "shape": "polygon", "points": [[0.03, 0], [0.05, 0], [0.05, 0.2], [0.03, 0.2]],
+                    "motion": {"type": "oscillation", "angular_amplitude": 0.3, "pivot": [0.04, 0], "period": 0.8}}]})",
+                                 "render_moving.json");
+  view::ImageOptions from_scene;  // every image setting from the scene's render section
+  check_frames(scene, {{"render_moving_frame4_pressure_viridis.png", 4, from_scene}});
 }
 
 TEST(RenderCompare, CountsPixelsBeyondTolerance) {

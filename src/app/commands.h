@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include "view/scene_view.h"
+
 namespace sluice::app {
 
 struct SimulateOptions {
@@ -27,18 +29,7 @@ struct BenchOptions {
 };
 int run_bench(const BenchOptions& o);
 
-// Options shared by `render` and `still`. An empty string takes the scene's `render`
-// section (whose defaults are 1280x720, cfl, spectrum, automatic range).
-struct ImageOptions {
-  std::string resolution;  // WxH
-  std::string color_by;    // cfl | speed | pressure | density_error
-  std::string colormap;    // spectrum | viridis | turbo
-  std::string range;       // "lo:hi" or "auto"
-  bool no_overlay = false;
-  bool no_colorbar = false;
-  int msaa = 0;                         // 0 or 4
-  std::string egl = "auto";             // auto | surfaceless | device
-};
+using view::ImageOptions;
 
 struct RenderOptions {
   std::string scene;

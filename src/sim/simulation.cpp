@@ -118,7 +118,7 @@ void Simulation::compute_volumes(const SpatialHashGrid& grid, const std::vector<
   const double r = kernel_.support(), w0 = kernel_.W(0.0), gamma1 = settings_.gamma1;
   const std::vector<Vec2>& x = grid.points();
   const Index n = static_cast<Index>(which.size());
-#pragma omp parallel
+#pragma omp parallel if (n >= kParallelMin)
   {
     std::vector<Index> near;
 #pragma omp for schedule(static, kForChunk)
@@ -177,7 +177,7 @@ void Simulation::update_boundary_volumes() {
   const double r = kernel_.support();
   const Index nm = static_cast<Index>(moving_.size());
   std::vector<std::uint8_t> near_now(near_moving_.size(), 0);
-#pragma omp parallel
+#pragma omp parallel if (nm >= kParallelMin)
   {
     std::vector<Index> near;
 #pragma omp for schedule(static, kForChunk)
