@@ -4,8 +4,11 @@
 #include "scene/scene.h"
 
 #include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -491,29 +494,155 @@ shapes::FluidShape read_fluid_block(Reader& r, const Context& ctx) {
   return f;
 }
 
-// Per-segment spacing: one number for all, or an array with one entry per segment.
-std::vector<double> read_segment_spacing(Reader& r, const Context& ctx, std::size_t segments, double def,
-                                         bool allow_array, const std::string& order) {
+// One entry of a per-segment spacing array: a number (uniform), or a pair [s_start, s_end]
+// for a spacing that varies linearly from the segment's first vertex to its second (dense
+// samples at a tip, sparse ones along a long flat wall).
+shapes::SegmentSpacing read_spacing_entry(const json& v, const std::string& path, const Context& ctx) {
+  const Range range = Range::positive("[m]");
+  if (v.is_number()) {
+    const double s = ctx.number(v, path, range);
+    return {s, s};
+  }
+  if (!v.is_array() || v.size() != 2)
+    ctx.fail(path, "expected a spacing > 0 [m] or a pair [s_start, s_end] of spacings > 0 [m] (graded from the segment's "
+                   "first point to its second), got " + show(v));
+  return {ctx.number(v[0], path + "/0", range), ctx.number(v[1], path + "/1", range)};
+}
+
+// Per-segment spacing: one number for all, or an array with one entry per segment, each a
+// number or a graded pair [s_start, s_end].
+std::vector<shapes::SegmentSpacing> read_segment_spacing(Reader& r, const Context& ctx, std::size_t segments, double def,
+                                                         bool allow_array, const std::string& order) {
   const json* v = r.find("spacing");
   if (!v) {
     r.resolved()["spacing"] = def;
-    return std::vector<double>(segments, def);
+    return std::vector<shapes::SegmentSpacing>(segments, {def, def});
   }
   r.resolved()["spacing"] = *v;
-  const Range range = Range::positive("[m]");
   if (v->is_array() && allow_array) {
-    if (v->size() != segments)
+    if (v->size() != segments) {
+      // Two numbers for one segment are most likely a graded pair without its brackets.
+      const std::string hint = segments == 1 && v->size() == 2 ? "; a graded spacing is a pair inside the array: [[s_start, s_end]]"
+                                                                : "; each entry is a number or a pair [s_start, s_end]";
       ctx.fail(r.at("spacing"), "expected " + std::to_string(segments) + " spacings (one per segment" + order + "), got " +
-                                    std::to_string(v->size()));
-    std::vector<double> out;
+                                    std::to_string(v->size()) + hint);
+    }
+    std::vector<shapes::SegmentSpacing> out;
     for (std::size_t i = 0; i < segments; ++i)
-      out.push_back(ctx.number((*v)[i], r.at("spacing") + "/" + std::to_string(i), range));
+      out.push_back(read_spacing_entry((*v)[i], r.at("spacing") + "/" + std::to_string(i), ctx));
     return out;
   }
   if (!v->is_number())
-    ctx.fail(r.at("spacing"), std::string("expected a number") + (allow_array ? " or an array of numbers (one per segment)" : "") +
-                                  ", got " + show(*v));
-  return std::vector<double>(segments, ctx.number(*v, r.at("spacing"), range));
+    ctx.fail(r.at("spacing"), allow_array ? "expected a number or an array with one entry per segment (a number or a pair "
+                                            "[s_start, s_end]), got " + show(*v)
+                                          : "expected a number, got " + show(*v) +
+                                                "; circles and ellipses are sampled uniformly in arc length, with one spacing");
+  const double s = ctx.number(*v, r.at("spacing"), Range::positive("[m]"));
+  return std::vector<shapes::SegmentSpacing>(segments, {s, s});
+}
+
+// A path given in the scene, relative to the scene file's directory (absolute ones as they are).
+std::filesystem::path relative_to_scene(const std::string& scene_file, const std::string& path) {
+  const std::filesystem::path p(path);
+  return (p.is_absolute() ? p : std::filesystem::path(scene_file).parent_path() / p).lexically_normal();
+}
+
+std::string trim(const std::string& s) {
+  const std::size_t a = s.find_first_not_of(" \t\r\n"), b = s.find_last_not_of(" \t\r\n");
+  return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
+}
+
+// The fields of one line of a sample file: comma-separated if it has a comma, else
+// separated by blanks.
+std::vector<std::string> split_fields(const std::string& line) {
+  std::vector<std::string> out;
+  if (line.find(',') != std::string::npos) {
+    std::stringstream ss(line);
+    for (std::string f; std::getline(ss, f, ',');) out.push_back(trim(f));
+    if (line.back() == ',') out.emplace_back();  // getline drops a trailing empty field
+  } else {
+    std::stringstream ss(line);
+    for (std::string f; ss >> f;) out.push_back(f);
+  }
+  return out;
+}
+
+// A whole field as a number (from_chars: the same in every locale; it takes no '+', so
+// one is skipped). A number too large for a double reads as infinite, so that the caller
+// reports it as not finite; one too small reads as what strtod makes of it (0 or subnormal).
+bool parse_number(const std::string& field, double& x) {
+  const bool plus = field.size() > 1 && field[0] == '+' && field[1] != '-' && field[1] != '+';
+  const char* first = field.data() + (plus ? 1 : 0);
+  const char* last = field.data() + field.size();
+  const auto [end, ec] = std::from_chars(first, last, x);
+  if (ec == std::errc::invalid_argument || end != last) return false;
+  if (ec == std::errc::result_out_of_range) x = std::strtod(std::string(first, last).c_str(), nullptr);
+  return true;
+}
+
+// A first line "x,y" or "x y" (either case) names the columns.
+bool is_header(const std::vector<std::string>& fields) {
+  auto is = [](const std::string& f, char c) { return f.size() == 1 && std::tolower(static_cast<unsigned char>(f[0])) == c; };
+  return fields.size() == 2 && is(fields[0], 'x') && is(fields[1], 'y');
+}
+
+// Samples from a text file: one point per line, "x,y" or "x y". Empty lines, lines
+// starting with '#' and a header "x,y" before the first sample are skipped.
+std::vector<Vec2> read_sample_file(const std::filesystem::path& path, const std::string& json_path, const Context& ctx) {
+  std::error_code ec;
+  std::ifstream in(path, std::ios::binary);
+  if (!in || !std::filesystem::is_regular_file(path, ec))
+    ctx.fail(json_path, "cannot open \"" + path.string() + "\" (a relative file is looked up in the scene file's directory)");
+  std::vector<Vec2> out;
+  bool first = true;
+  std::string line;
+  for (long number = 1; std::getline(in, line); ++number) {
+    if (number == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);  // a UTF-8 byte order mark
+    const std::string text = trim(line);
+    if (text.empty() || text.front() == '#') continue;
+    const auto fields = split_fields(text);
+    const bool header = first && is_header(fields);
+    first = false;
+    if (header) continue;
+    const std::string where = path.string() + ":" + std::to_string(number);
+    const std::string shown = text.size() > 60 ? text.substr(0, 57) + "..." : text;
+    double x = 0, y = 0;
+    if (fields.size() != 2 || !parse_number(fields[0], x) || !parse_number(fields[1], y))
+      ctx.fail(json_path, where + ": expected two numbers x,y, got '" + shown + "'");
+    if (!std::isfinite(x) || !std::isfinite(y))
+      ctx.fail(json_path, where + ": '" + shown + "' is not a finite point; coordinates must be finite numbers [m]");
+    out.emplace_back(x, y);
+  }
+  if (out.empty())
+    ctx.fail(json_path, path.string() + ": no samples (only empty lines, comments or a header); give at least one line x,y");
+  return out;
+}
+
+// "points": boundary samples used exactly as given, from an inline list or a file. They
+// have no curve, no layers and no solid side; fluid lattice points within half a spacing
+// of a sample are removed like for any other boundary.
+shapes::BoundaryShape read_point_samples(Reader& r, const Context& ctx) {
+  shapes::BoundaryShape b;
+  b.kind = shapes::BoundaryShape::Kind::Points;
+  const json* file = r.find("file");
+  const json* samples = r.find("samples");
+  r.finish();  // a misspelt key before any file is read
+  if ((file != nullptr) == (samples != nullptr))
+    ctx.fail(r.path(), std::string(file ? "both \"file\" and" : "neither \"file\" nor") + " \"samples\" given; give exactly one: " +
+                           "\"file\" (a text file of x,y lines, relative to the scene file) or \"samples\" (an array of [x, y])");
+  if (samples) {
+    if (samples->is_array() && samples->empty()) ctx.fail(r.at("samples"), "the list is empty; give at least one sample [x, y]");
+    b.points = ctx.points(*samples, r.at("samples"), 1);
+    r.resolved()["samples"] = *samples;
+  } else {
+    const std::filesystem::path path = relative_to_scene(ctx.file, ctx.string(*file, r.at("file")));
+    b.points = read_sample_file(path, r.at("file"), ctx);
+    // Absolute, so that the resolved scene (written next to the outputs) still finds it.
+    std::error_code ec;
+    const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+    r.resolved()["file"] = (ec ? path : absolute.lexically_normal()).string();
+  }
+  return b;
 }
 
 // One scripted motion component (see motion.h); the object at rest is its shape as given.
@@ -612,8 +741,9 @@ shapes::BoundaryShape read_boundary(Reader& r, const Context& ctx, std::size_t i
   std::string& name = obj.name;
   std::string& shape = obj.shape;
   shapes::BoundaryShape b;
-  shape = r.choice("shape", {"box", "polyline", "polygon", "circle", "ellipse"}, nullptr);
+  shape = r.choice("shape", {"box", "polyline", "polygon", "circle", "ellipse", "points"}, nullptr);
   name = r.string("name", shape + std::to_string(index));
+  if (shape == "points") return read_point_samples(r, ctx);
   bool fluid_inside = false;
   auto side = [&](std::vector<std::string> allowed, const char* def) { return r.choice("fluid_side", allowed, def); };
 
@@ -667,7 +797,7 @@ shapes::BoundaryShape read_boundary(Reader& r, const Context& ctx, std::size_t i
       b.radii = r.vec2("radii");
       if (b.radii.minCoeff() <= 0) ctx.fail(r.at("radii"), "radii must be > 0 [m], got " + show(r.resolved()["radii"]));
     }
-    b.spacing = read_segment_spacing(r, ctx, 1, h, false, "")[0];
+    b.spacing = read_segment_spacing(r, ctx, 1, h, false, "")[0].start;
     b.fluid_inside = side({"inside", "outside"}, "outside") == "inside";
   }
   b.layers = r.integer("layers", 2, 1, 1000);
@@ -687,7 +817,7 @@ shapes::BoundaryShape read_boundary(Reader& r, const Context& ctx, std::size_t i
     length = shapes::ellipse_perimeter(b.radii.x(), b.radii.y()) / b.spacing;
   } else {
     for (std::size_t i = 0; i < b.segment_spacing.size(); ++i)
-      length += (b.points[(i + 1) % b.points.size()] - b.points[i]).norm() / b.segment_spacing[i];
+      length += shapes::spacing_integral((b.points[(i + 1) % b.points.size()] - b.points[i]).norm(), b.segment_spacing[i]);
   }
   if (length * b.layers > kMaxParticles)
     ctx.fail(r.path(), "would create about " + num(std::round(length * b.layers)) + " boundary samples; the limit is " +

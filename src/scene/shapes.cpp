@@ -65,6 +65,16 @@ std::size_t segment_count(std::size_t points, bool closed) {
   return closed ? points : (points > 0 ? points - 1 : 0);
 }
 
+// Where sample k of n lies on a segment, as a fraction of its length: k / n when uniform.
+// Graded: the integral of dv / s(v) up to u is (L / (s1 - s0)) ln(s(u) / s0), so it reaches
+// k / n of its total where s(u) = s0 (s1 / s0)^(k / n), i.e. at u / L = ((1 + d)^(k / n) - 1) / d.
+double sample_fraction(long long k, long long n, const SegmentSpacing& spacing) {
+  const double t = static_cast<double>(k) / static_cast<double>(n);
+  if (spacing.start == spacing.end) return t;
+  const double d = (spacing.end - spacing.start) / spacing.start;
+  return std::expm1(t * std::log1p(d)) / d;
+}
+
 }  // namespace
 
 // --- geometry helpers -------------------------------------------------------------------
@@ -182,14 +192,23 @@ std::vector<Vec2> offset_chain(const std::vector<Vec2>& points, bool closed, dou
   return out;
 }
 
-void sample_chain(const std::vector<Vec2>& points, bool closed, const std::vector<double>& spacing,
+double spacing_integral(double length, const SegmentSpacing& spacing) {
+  const double s0 = spacing.start, s1 = spacing.end;
+  if (s0 == s1) return length / s0;
+  // s(u) = s0 + (s1 - s0) u / L integrates to L ln(s1 / s0) / (s1 - s0) = (L / s0) ln(1 + d) / d
+  // with d = s1 / s0 - 1; log1p keeps nearly equal spacings accurate.
+  const double d = (s1 - s0) / s0;
+  return length / s0 * (std::log1p(d) / d);
+}
+
+void sample_chain(const std::vector<Vec2>& points, bool closed, const std::vector<SegmentSpacing>& spacing,
                   std::vector<Vec2>& out) {
   const std::size_t n = points.size(), segs = segment_count(n, closed);
   for (std::size_t i = 0; i < segs; ++i) {
     const Vec2& a = points[i];
     const Vec2 ab = points[(i + 1) % n] - a;
-    const long long m = std::max(1LL, std::llround(ab.norm() / spacing[i]));
-    for (long long k = 0; k < m; ++k) out.push_back(a + ab * (static_cast<double>(k) / static_cast<double>(m)));
+    const long long m = std::max(1LL, std::llround(spacing_integral(ab.norm(), spacing[i])));
+    for (long long k = 0; k < m; ++k) out.push_back(a + ab * sample_fraction(k, m, spacing[i]));
   }
   if (!closed && n > 0) out.push_back(points.back());
 }
@@ -219,6 +238,7 @@ void sample_ellipse(const Vec2& center, const Vec2& radii, double spacing, std::
 }
 
 std::vector<Vec2> BoundaryShape::sample() const {
+  if (kind == Kind::Points) return points;
   std::vector<Vec2> out;
   for (int k = 0; k < layers; ++k) {
     const double d = (k + surface_offset) * layer_spacing;
@@ -236,6 +256,7 @@ std::vector<Vec2> BoundaryShape::sample() const {
 }
 
 std::vector<std::pair<Vec2, Vec2>> BoundaryShape::curve(double max_length) const {
+  if (kind == Kind::Points) return {};  // the samples are all there is; they clear the fluid themselves
   std::vector<Vec2> pts = points;
   bool loop = closed;
   if (kind == Kind::Ellipse) {
@@ -256,6 +277,7 @@ std::vector<std::pair<Vec2, Vec2>> BoundaryShape::curve(double max_length) const
 }
 
 bool BoundaryShape::on_solid_side(const Vec2& p, double extra) const {
+  if (kind == Kind::Points) return false;
   if (kind == Kind::Ellipse) {
     const double q = (p - center).cwiseQuotient(radii).squaredNorm();
     return fluid_inside ? q > 1.0 : q < 1.0;

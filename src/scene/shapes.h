@@ -43,15 +43,22 @@ std::vector<Vec2> fill_lattice(const FluidShape& shape, double h);
 
 // --- boundaries -------------------------------------------------------------------------
 
+// Sample spacing along one segment: it varies linearly from `start` at the segment's
+// first vertex to `end` at its second; start == end is the uniform spacing.
+struct SegmentSpacing {
+  double start = 0, end = 0;
+};
+
 struct BoundaryShape {
-  enum class Kind { Chain, Box, Ellipse };
+  enum class Kind { Chain, Box, Ellipse, Points };
   Kind kind = Kind::Chain;
   // Chain and Box (box, polyline, polygon): vertices in travel order; closed joins the
   // last to the first. segment_spacing has one entry per segment. The fluid is on the
   // left of the direction of travel when fluid_left, and the layers go to the other side.
+  // Points: `points` are the samples themselves, used as given (no curve, no layers).
   std::vector<Vec2> points;
   bool closed = false;
-  std::vector<double> segment_spacing;
+  std::vector<SegmentSpacing> segment_spacing;
   bool fluid_left = true;
   // Box only, for the solid-side test: the rectangle, open above without a lid.
   Vec2 min{0, 0}, max{0, 0};
@@ -70,23 +77,30 @@ struct BoundaryShape {
   // (thin plates with fluid on both sides).
   double surface_offset = 0.5;
 
-  // All samples, layer by layer from the surface into the solid.
+  // All samples, layer by layer from the surface into the solid (Points: as given).
   std::vector<Vec2> sample() const;
-  // The curve (layer 0) as segments no longer than max_length.
+  // The curve (layer 0) as segments no longer than max_length; none for Points.
   std::vector<std::pair<Vec2, Vec2>> curve(double max_length) const;
   // True on the solid side: inside an obstacle; outside a container (closed polygon,
   // ellipse, or box: outside [min.x, max.x] x [min.y, max.y], unbounded above without a
   // lid); behind an open polyline within its layer band (depth <= (layers - 1) *
-  // layer_spacing + extra, projection within a segment or behind a corner).
+  // layer_spacing + extra, projection within a segment or behind a corner). Never for
+  // Points: a point list has no inside.
   bool on_solid_side(const Vec2& p, double extra) const;
 };
 
 // Offsets an open or closed chain by `distance` along its left normal (negative: right),
 // meeting at the miter point at corners (miter length clamped to 4 * |distance|).
 std::vector<Vec2> offset_chain(const std::vector<Vec2>& points, bool closed, double distance);
-// Samples a chain: segment i of length L gets n = max(1, round(L / spacing[i])) equal
-// intervals; corners appear once (the end point of an open chain is included).
-void sample_chain(const std::vector<Vec2>& points, bool closed, const std::vector<double>& spacing,
+// The number of intervals a segment of length L would need to follow the spacing law
+// exactly: the integral of du / s(u) over [0, L] (L / s when uniform).
+double spacing_integral(double length, const SegmentSpacing& spacing);
+// Samples a chain: segment i of length L gets n = max(1, round(spacing_integral(L,
+// spacing[i]))) intervals; uniform spacing gives equal intervals, a graded one puts
+// sample k where the integral of du / s(u) reaches k / n of its total, so the gaps grow
+// geometrically from about `start` to about `end`. Corners appear once (the end point
+// of an open chain is included).
+void sample_chain(const std::vector<Vec2>& points, bool closed, const std::vector<SegmentSpacing>& spacing,
                   std::vector<Vec2>& out);
 // n = max(3, round(perimeter / spacing)) points, uniform in arc length, starting at angle 0.
 void sample_ellipse(const Vec2& center, const Vec2& radii, double spacing, std::vector<Vec2>& out);
