@@ -328,7 +328,7 @@ TEST(SamplingErrors, PointSamples) {
            {"/boundaries/0: neither \"file\" nor \"samples\" given; give exactly one: \"file\" (a text file of x,y lines"}},
           {"file not a string", boundary(R"({"shape": "points", "file": 3})"), {"/boundaries/0/file: expected a non-empty string, got 3"}},
           {"layers", boundary(R"({"shape": "points", "samples": [[0, 0]], "layers": 2})"),
-           {"/boundaries/0/layers: unknown key; allowed keys: shape, name, file, samples"}},
+           {"/boundaries/0/layers: unknown key; allowed keys: shape, name, motion, file, samples"}},
           {"spacing", boundary(R"({"shape": "points", "samples": [[0, 0]], "spacing": 0.1})"), {"/boundaries/0/spacing: unknown key"}},
           {"misspelt key before the file is read", boundary(R"({"shape": "points", "file": "none.csv", "fluid_side": "left"})"),
            {"/boundaries/0/fluid_side: unknown key"}},

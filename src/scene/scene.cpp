@@ -737,13 +737,26 @@ Motion read_motion(const json& v, const std::string& path, const Context& ctx, j
   return motion;
 }
 
+// The optional "motion" key of a boundary object.
+void read_object_motion(Reader& r, const Context& ctx, BoundaryObject& obj) {
+  if (const json* m = r.find("motion"); m && !m->is_null()) {
+    obj.motion = read_motion(*m, r.at("motion"), ctx, r.resolved()["motion"]);
+    obj.moving = true;
+  } else {
+    r.resolved()["motion"] = nullptr;
+  }
+}
+
 shapes::BoundaryShape read_boundary(Reader& r, const Context& ctx, std::size_t index, double h, BoundaryObject& obj) {
   std::string& name = obj.name;
   std::string& shape = obj.shape;
   shapes::BoundaryShape b;
   shape = r.choice("shape", {"box", "polyline", "polygon", "circle", "ellipse", "points"}, nullptr);
   name = r.string("name", shape + std::to_string(index));
-  if (shape == "points") return read_point_samples(r, ctx);
+  if (shape == "points") {
+    read_object_motion(r, ctx, obj);
+    return read_point_samples(r, ctx);
+  }
   bool fluid_inside = false;
   auto side = [&](std::vector<std::string> allowed, const char* def) { return r.choice("fluid_side", allowed, def); };
 
@@ -803,12 +816,7 @@ shapes::BoundaryShape read_boundary(Reader& r, const Context& ctx, std::size_t i
   b.layers = r.integer("layers", 2, 1, 1000);
   b.layer_spacing = r.number("layer_spacing", h, Range::positive("[m]"));
   b.surface_offset = r.number("surface_offset", 0.5, Range::at_least(0, "(in layer spacings)"));
-  if (const json* m = r.find("motion"); m && !m->is_null()) {
-    obj.motion = read_motion(*m, r.at("motion"), ctx, r.resolved()["motion"]);
-    obj.moving = true;
-  } else {
-    r.resolved()["motion"] = nullptr;
-  }
+  read_object_motion(r, ctx, obj);
   r.finish();
 
   // Guard against absurd sample counts (e.g. a spacing typo).
