@@ -69,14 +69,11 @@ Channel interpolate(const std::vector<MotionComponent::Key>& keys, bool smooth, 
 
 }  // namespace
 
-Vec2 Pose::position(const Vec2& x0) const { return rotate(angle, x0) + shift; }
+PoseMap::PoseMap(const Pose& p) : p_(p), c_(std::cos(p.angle)), s_(std::sin(p.angle)) {}
 
-Vec2 Pose::velocity(const Vec2& x0) const { return omega * perp(rotate(angle, x0)) + vel; }
-
-Vec2 Pose::acceleration(const Vec2& x0) const {
-  const Vec2 r = rotate(angle, x0);
-  return alpha * perp(r) - omega * omega * r + acc;
-}
+Vec2 Pose::position(const Vec2& x0) const { return PoseMap(*this).position(x0); }
+Vec2 Pose::velocity(const Vec2& x0) const { return PoseMap(*this).velocity(x0); }
+Vec2 Pose::acceleration(const Vec2& x0) const { return PoseMap(*this).acceleration(x0); }
 
 // x -> R_o (R_i x + s_i) + s_o: angles add; the shift is R_o s_i + s_o, differentiated
 // with d/dt R_o = omega_o J R_o.

@@ -21,6 +21,26 @@ struct Pose {
   Vec2 acceleration(const Vec2& x0) const;
 };
 
+// A pose with its rotation evaluated once, for mapping many points (no trigonometry per point).
+class PoseMap {
+ public:
+  explicit PoseMap(const Pose& p);
+  Vec2 rotated(const Vec2& x0) const { return {c_ * x0.x() - s_ * x0.y(), s_ * x0.x() + c_ * x0.y()}; }
+  Vec2 position(const Vec2& x0) const { return rotated(x0) + p_.shift; }
+  Vec2 velocity(const Vec2& x0) const {
+    const Vec2 r = rotated(x0);
+    return p_.omega * Vec2(-r.y(), r.x()) + p_.vel;
+  }
+  Vec2 acceleration(const Vec2& x0) const {
+    const Vec2 r = rotated(x0);
+    return p_.alpha * Vec2(-r.y(), r.x()) - p_.omega * p_.omega * r + p_.acc;
+  }
+
+ private:
+  Pose p_;
+  double c_, s_;
+};
+
 // `outer` applied after `inner` (x -> outer(inner(x))), derivatives by the product rule.
 Pose compose(const Pose& outer, const Pose& inner);
 

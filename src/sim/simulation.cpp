@@ -118,7 +118,7 @@ void Simulation::compute_volumes(const SpatialHashGrid& grid, const std::vector<
   const double r = kernel_.support(), w0 = kernel_.W(0.0), gamma1 = settings_.gamma1;
   const std::vector<Vec2>& x = grid.points();
   const Index n = static_cast<Index>(which.size());
-#pragma omp parallel if (n >= kParallelMin)
+#pragma omp parallel if (n >= kParallelMin / 8)
   {
     std::vector<Index> near;
 #pragma omp for schedule(static, kForChunk)
@@ -150,12 +150,11 @@ std::vector<double> Simulation::boundary_volumes_from_scratch() const {
 // (Eq. 16/19) and viscosity use to predict where the boundary is at t + dt. Positions
 // come from the script at t, never from accumulated increments.
 void Simulation::move_boundaries(double dt) {
-  std::vector<Pose> now(scene_.objects.size()), mid(scene_.objects.size());
-  for (size_t o = 0; o < scene_.objects.size(); ++o)
-    if (scene_.objects[o].moving) {
-      now[o] = scene_.objects[o].motion.at(time_);
-      mid[o] = scene_.objects[o].motion.at(time_ + 0.5 * dt);
-    }
+  std::vector<PoseMap> now, mid;
+  for (const BoundaryObject& obj : scene_.objects) {
+    now.emplace_back(obj.moving ? obj.motion.at(time_) : Pose{});
+    mid.emplace_back(obj.moving ? obj.motion.at(time_ + 0.5 * dt) : Pose{});
+  }
   parallel_for(static_cast<Index>(moving_.size()), [&](Index k) {
     const Index b = moving_[k];
     const Index o = boundary_.object[b];
@@ -174,23 +173,33 @@ void Simulation::move_boundaries(double dt) {
 // support now or at the last update. Static walls far from any moving part keep their
 // volumes.
 void Simulation::update_boundary_volumes() {
-  const double r = kernel_.support();
+  const double r = kernel_.support(), w0 = kernel_.W(0.0), gamma1 = settings_.gamma1;
   const Index nm = static_cast<Index>(moving_.size());
   std::vector<std::uint8_t> near_now(near_moving_.size(), 0);
-#pragma omp parallel if (nm >= kParallelMin)
+  // Moving samples: volume and, in the same gather, the static samples they reach.
+  // (Volume loops do far more work per item than a particle loop: a lower threshold.)
+#pragma omp parallel if (nm >= kParallelMin / 8)
   {
     std::vector<Index> near;
 #pragma omp for schedule(static, kForChunk)
     for (Index k = 0; k < nm; ++k) {
       const Index b = moving_[k];
-      const size_t count = boundary_grid_.gather_within(boundary_.x[b], r, b, near, 0);
-      for (size_t m = 0; m < count; ++m)  // every writer stores 1: the result is order-free
-        std::atomic_ref<std::uint8_t>(near_now[near[m]]).store(1, std::memory_order_relaxed);
+      const Vec2 xb = boundary_.x[b];
+      const size_t count = boundary_grid_.gather_within(xb, r, b, near, 0);
+      std::sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(count));  // index order, as compute_volumes
+      double sum = w0;
+      for (size_t m = 0; m < count; ++m) {
+        const Index j = near[m];
+        sum += kernel_.W((xb - boundary_.x[j]).norm());
+        if (!boundary_.moving[j])  // every writer stores 1: the result is order-free
+          std::atomic_ref<std::uint8_t>(near_now[j]).store(1, std::memory_order_relaxed);
+      }
+      boundary_.volume[b] = gamma1 / sum;
     }
   }
   volume_update_.clear();
   for (Index b = 0; b < boundary_.size(); ++b)
-    if (boundary_.moving[b] || near_now[b] || near_moving_[b]) volume_update_.push_back(b);
+    if (near_now[b] || near_moving_[b]) volume_update_.push_back(b);
   near_moving_.swap(near_now);
   compute_volumes(boundary_grid_, volume_update_, boundary_.volume);
 }
@@ -200,7 +209,7 @@ double Simulation::max_boundary_speed() const {
   for (size_t o = 0; o < scene_.objects.size(); ++o) {
     const BoundaryObject& obj = scene_.objects[o];
     if (!obj.moving) continue;
-    const Pose pose = obj.motion.at(time_);
+    const PoseMap pose(obj.motion.at(time_));
     for (Index k = 0; k < obj.count; ++k)
       vmax = std::max(vmax, pose.velocity(scene_.boundary_x[obj.first + k]).squaredNorm());
   }
