@@ -73,6 +73,16 @@ struct BenchRenderOptions {
 };
 int run_bench_render(const BenchRenderOptions& o);
 
+struct SuiteOptions {
+  std::string file = "scenes/hard/suite.json";
+  bool quick = false;        // the short version of every case (what CI runs)
+  std::string solver = "both";  // iisph | wcsph | both
+  std::string only;          // run only the case of this name
+  int threads = 0;
+  std::string csv = "renders/suite/suite.csv";
+};
+int run_suite(const SuiteOptions& o);
+
 void set_threads(int threads);
 
 }  // namespace sluice::app

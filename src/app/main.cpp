@@ -101,6 +101,16 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "surfaceless", "device"}));
   benchrender->add_option("--csv", brender.csv, "CSV output file");
 
+  SuiteOptions suite;
+  CLI::App* suitecmd = app.add_subcommand("suite", "Run the hard-case suite with both solvers; print a pass/fail table");
+  suitecmd->add_option("file", suite.file, "Suite file (default scenes/hard/suite.json)");
+  suitecmd->add_flag("--short", suite.quick, "The short version of every case (what CI runs)");
+  suitecmd->add_option("--solver", suite.solver, "iisph, wcsph or both (default)")
+      ->check(CLI::IsMember({"iisph", "wcsph", "both"}));
+  suitecmd->add_option("--case", suite.only, "Run only this case");
+  suitecmd->add_option("--threads", suite.threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  suitecmd->add_option("--csv", suite.csv, "CSV output file (default renders/suite/suite.csv)");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*simulate) return run_simulate(sim);
@@ -109,6 +119,7 @@ int main(int argc, char** argv) {
     if (*stillcmd) return run_still(still);
     if (*compare) return run_compare(cmp);
     if (*benchrender) return run_bench_render(brender);
+    if (*suitecmd) return run_suite(suite);
   } catch (const sluice::SceneError& e) {
     std::fprintf(stderr, "sluice: scene error: %s\n", e.what());
     return 2;

@@ -406,6 +406,7 @@ StabilityLimits read_stability(Reader& r) {
   StabilityLimits s;
   s.max_error_percent = r.number("max_error_percent", s.max_error_percent, Range::positive("(percent)"));
   s.bounds_margin = r.number("bounds_margin", s.bounds_margin, Range::positive("(scene sizes)"));
+  s.max_leaked_percent = r.number("max_leaked_percent", s.max_leaked_percent, Range{0, 100, false, false, "(percent of the fluid particles)"});
   r.finish();
   return s;
 }
@@ -916,6 +917,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
 
   // Boundary samples, one contiguous range per object.
   for (std::size_t i = 0; i < walls.size(); ++i) {
+    scene.objects[i].geometry = walls[i];
     const auto samples = walls[i].sample();
     scene.objects[i].first = static_cast<Index>(scene.boundary_x.size());
     scene.objects[i].count = static_cast<Index>(samples.size());
@@ -955,6 +957,28 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
       scene.bounds_max = scene.bounds_max.cwiseMax(p);
     }
   return scene;
+}
+
+Index count_fluid_in_solids(const Scene& scene, const std::vector<Vec2>& fluid_x, double t) {
+  const double h = scene.spacing;
+  Index count = 0;
+  for (const BoundaryObject& obj : scene.objects) {
+    // Into the object's rest frame: x0 = R(-angle) (x - shift).
+    const Pose pose = obj.moving ? obj.motion.at(t) : Pose{};
+    const PoseMap back(Pose{-pose.angle, 0, 0, Vec2::Zero(), Vec2::Zero(), Vec2::Zero()});
+    std::vector<std::pair<Vec2, Vec2>> curve;  // built on the first particle on the solid side
+    for (const Vec2& x : fluid_x) {
+      const Vec2 p = back.rotated(x - pose.shift);
+      if (!obj.geometry.on_solid_side(p, 0.5 * h)) continue;
+      // Deeper than half a spacing behind the surface: past the first sample layer (a
+      // particle in a sharp tip thinner than the fluid's spacing is not through a wall).
+      if (curve.empty()) curve = obj.geometry.curve(h);
+      double d = std::numeric_limits<double>::infinity();
+      for (const auto& [a, b] : curve) d = std::min(d, shapes::point_segment_distance(p, a, b));
+      count += (curve.empty() || d > 0.5 * h) ? 1 : 0;
+    }
+  }
+  return count;
 }
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {

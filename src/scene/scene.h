@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "scene/motion.h"
+#include "scene/shapes.h"
 #include "sim/settings.h"
 #include "sim/types.h"
 
@@ -27,6 +28,7 @@ struct BoundaryObject {
   std::string shape;  // box | polyline | polygon | circle | ellipse
   bool moving = false;  // has a scripted motion; false: a wall at rest (volumes computed once)
   Motion motion;        // pose over time; boundary_x holds the samples at rest (identity pose)
+  shapes::BoundaryShape geometry;  // the shape at rest (solid-side tests, e.g. leak checks)
   Index first = 0;
   Index count = 0;
 };
@@ -67,6 +69,12 @@ struct Scene {
   Vec2 bounds_min{0, 0}, bounds_max{0, 0};  // box around all particles at t = 0
   nlohmann::json resolved;                  // the scene with every default filled in
 };
+
+// Fluid particles on the solid side of any boundary at time t (each object at its
+// scripted pose) and more than half a spacing behind its surface, i.e. past the first
+// sample layer: particles that passed through a wall. Open polylines count a band of
+// half a spacing behind their last layer. 0 for a healthy run.
+Index count_fluid_in_solids(const Scene& scene, const std::vector<Vec2>& fluid_x, double t);
 
 // Reads and validates a scene file; each override is "json/path=value" or
 // "json.path=value" (value parsed as JSON, else taken as a string), applied before

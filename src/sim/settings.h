@@ -69,6 +69,9 @@ struct TimeSettings {
 struct StabilityLimits {
   double max_error_percent = 50.0;  // largest per-step compression error [%]
   double bounds_margin = 10.0;      // particles farther than this many scene sizes are lost
+  // Fluid particles found past a wall's first sample layer at a frame time, as a percentage
+  // of all fluid particles; more means the boundary no longer holds the fluid.
+  double max_leaked_percent = 1.0;
 };
 
 }  // namespace sluice

@@ -631,6 +631,17 @@ void Simulation::check_stability(const StepStats& st) const {
       fail(os.str());
     }
   }
+  // Walls that no longer hold the fluid (checked at frame times: a pass over every
+  // particle and object).
+  if (st.frame >= 0) {
+    const Index leaked = count_fluid_in_solids(scene_, fluid_.x, time_);
+    if (leaked > 0 && 100.0 * leaked > scene_.limits.max_leaked_percent * fluid_.size()) {
+      std::ostringstream os;
+      os << leaked << " of " << fluid_.size() << " fluid particles are past a wall's first sample layer (more than "
+         << "stability.max_leaked_percent = " << scene_.limits.max_leaked_percent << "%)";
+      fail(os.str());
+    }
+  }
   if (st.density_error_percent > scene_.limits.max_error_percent) {
     std::ostringstream os;
     os << "average compression error " << st.density_error_percent
