@@ -7,6 +7,8 @@ packages=(
   libeigen3-dev nlohmann-json3-dev libcli11-dev libgtest-dev
   # renderer: glad loader generator, stb image I/O, fast deflate, headless EGL (Mesa), video
   python3-glad libstb-dev libdeflate-dev libegl-dev libegl-mesa0 libgl1-mesa-dri ffmpeg
+  # figures (validation, benchmarks)
+  gnuplot-nox
 )
 missing=()
 for p in "${packages[@]}"; do

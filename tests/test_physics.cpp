@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "analysis/validation.h"
 #include "sim/simulation.h"
 #include "test_util.h"
 
@@ -125,119 +126,35 @@ TEST(Physics, BlockAtRestStaysAtRest) {
 
 // --- hydrostatic column ---------------------------------------------------------------------
 
-struct HydroCase {
-  std::string name;
-  std::string solver;      // JSON members of "solver"
-  std::string time;        // JSON members of "time"
-  double bin_tol;          // on |<p>_bin / (rho0 g d_bin) - 1| for d in (3h, d_max)
-  double slope_tol;        // on |fitted dp/dd / (rho0 g) - 1| over the same range
-  bool zero_pressure_wall; // p_b = 0: the rows within 3h of the floor are checked apart
-};
+// scenes/validation/hydrostatic.json: box [0,0]-[0.4,0.6] without a lid, water
+// [0,0]-[0.4,0.5], h = 0.02 (500 particles), viscosity 0.01 to damp the sloshing, 2 s.
+// The pressure is averaged per depth bin over every step of the last 0.5 s (see
+// analysis/validation.h); the six cases and their tolerances (with the measurements they
+// come from) are analysis::hydrostatic_cases(), which `sluice validate hydrostatic` prints.
+class Hydrostatic : public ::testing::TestWithParam<analysis::HydrostaticCase> {};
 
-std::ostream& operator<<(std::ostream& os, const HydroCase& c) { return os << c.name; }
-
-class Hydrostatic : public ::testing::TestWithParam<HydroCase> {};
-
-// Box [0,0]-[0.4,0.6] without a lid, water [0,0]-[0.4,0.5], h = 0.02 (500 particles),
-// viscosity 0.01 to damp the sloshing. After 1.5 s the pressure of the particles away
-// from the side walls (by 3h) is averaged per depth bin (2h) over every step of the last
-// 0.5 s: a single step's IISPH pressure is noisy (see the tolerance note in the cases).
 TEST_P(Hydrostatic, PressureMatchesDepth) {
-  const HydroCase& c = GetParam();
-  const std::string text = R"({
-    "spacing": 0.02,
-    "solver": {"viscosity": 0.01, )" + c.solver + R"(},
-    "time": {"duration": 2, )" + c.time + R"(},
-    "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.4, 0.5]}],
-    "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.4, 0.6]}]
-  })";
-  const Scene scene = scene_from_json(text);
-  Simulation sim(scene);
-  const double h = scene.spacing, rho0 = scene.solver.rest_density, g = 9.81, W = 0.4;
-  const int nbins = 20;
-  std::vector<double> sp(nbins, 0.0), sd(nbins, 0.0);
-  std::vector<long> cnt(nbins, 0);
-  long steps = 0, capped = 0, samples = 0;
-  double surface = 0.0, floor_depth = 0.0;
-  while (!sim.finished()) {
-    const StepStats st = sim.step();
-    ++steps;
-    capped += st.iterations >= scene.solver.max_iterations;
-    if (st.time < 1.5) continue;
-    ++samples;
-    const FluidParticles& f = sim.fluid();
-    double top = -INFINITY;
-    for (const Vec2& x : f.x) top = std::max(top, x.y());
-    surface = top + 0.5 * h;
-    floor_depth = surface;  // the floor is at y = 0
-    for (Index i = 0; i < f.size(); ++i) {
-      const Vec2 x = f.x[i];
-      if (x.x() < 3 * h || x.x() > W - 3 * h) continue;
-      const double d = surface - x.y();
-      const int b = std::clamp(static_cast<int>(d / (2 * h)), 0, nbins - 1);
-      sp[b] += f.p[i];
-      sd[b] += d;
-      ++cnt[b];
-    }
-  }
-  ASSERT_GT(samples, 400);
-  // With p_b = 0 the floor pushes with half the force of a mirrored wall, so the rows
-  // next to it carry up to ~1.75 rho0 g d (section 4.2.3): they are checked apart.
-  const double d_max = c.zero_pressure_wall ? floor_depth - 3 * h : INFINITY;
-  double worst = 0.0, worst_d = 0.0, sxx = 0.0, sxy = 0.0, floor_ratio = 0.0;
-  for (int b = 0; b < nbins; ++b) {
-    if (cnt[b] == 0) continue;
-    const double d = sd[b] / cnt[b], p = sp[b] / cnt[b], ratio = p / (rho0 * g * d);
-    if (std::getenv("SLUICE_TEST_VERBOSE")) std::printf("  d = %.3f  <p>/(rho0 g d) = %.4f\n", d, ratio);
-    if (d > floor_depth - 2 * h) floor_ratio = std::max(floor_ratio, ratio);
-    if (d <= 3 * h || d >= d_max) continue;
-    sxx += cnt[b] * d * d;
-    sxy += cnt[b] * d * p;
-    if (std::abs(ratio - 1.0) > worst) {
-      worst = std::abs(ratio - 1.0);
-      worst_d = d;
-    }
-  }
-  const double slope_err = std::abs(sxy / sxx / (rho0 * g) - 1.0);
+  const analysis::HydrostaticCase& c = GetParam();
+  const Scene scene = load_scene(std::string(SLUICE_SOURCE_DIR) + "/scenes/validation/hydrostatic.json", c.set);
+  const auto r = analysis::run_hydrostatic(scene, 0.4, 1.5, c.zero_pressure_wall);
+  if (std::getenv("SLUICE_TEST_VERBOSE"))
+    for (const auto& b : r.bins) std::printf("  d = %.3f  <p>/(rho0 g d) = %.4f\n", b.depth, b.ratio);
   std::printf("[ measured ] hydrostatic %s: %ld steps (%ld at max_iterations), surface %.4f m, end max speed "
               "%.3e m/s, worst bin error %.4f at d = %.3f m, slope error %.4f, floor bin ratio %.3f\n",
-              c.name.c_str(), steps, capped, surface, max_speed(sim), worst, worst_d, slope_err, floor_ratio);
-  EXPECT_LT(worst, c.bin_tol);
-  EXPECT_LT(slope_err, c.slope_tol);
-  EXPECT_GT(surface, 0.48);  // the column neither collapses nor boils: the surface stays within h
-  EXPECT_LT(surface, 0.52);
+              c.name.c_str(), r.steps, r.capped, r.surface, r.max_speed_end, r.worst_bin_error, r.worst_depth,
+              r.slope_error, r.floor_ratio);
+  ASSERT_GE(r.bins.size(), 10u);
+  EXPECT_LT(r.worst_bin_error, c.bin_tolerance);
+  EXPECT_LT(r.slope_error, c.slope_tolerance);
+  EXPECT_GT(r.surface, 0.48);  // the column neither collapses nor boils: the surface stays within h
+  EXPECT_LT(r.surface, 0.52);
   if (c.zero_pressure_wall) {
-    EXPECT_GT(floor_ratio, 1.3);  // the documented drawback of p_b = 0 (measured 1.74-1.75)
+    EXPECT_GT(r.floor_ratio, 1.3);  // the documented drawback of p_b = 0 (measured 1.74-1.75)
   }
 }
 
-// IISPH runs at tolerance 0.01% instead of the default 0.1%: at dt = 1e-3 a step without
-// half of the hydrostatic pressure compresses a 0.5 m column by only ~g dt^2 / h = 0.05%,
-// below 0.1%, so at the default the per-step pressure swings between ~0.5 and ~2.4 times
-// hydrostatic and even its 0.5 s average is 17% high (measured, see the report).
-// Tolerances, from errors measured at h = 0.02 (worst bin / slope):
-//   IISPH extrapolation 5.5% / 3.2%, mirroring 6.4% / 3.5%, zero 3.7% / 2.9% (floor rows
-//   excluded); WCSPH (k = 5e5, 1% compression at the floor) 3.6% / 1.6%, 3.2% / 2.0%,
-//   1.6% / 0.9%. The worst bins are the rows next to the floor, where the boundary model
-//   dominates. Bins: 10% for IISPH and 6% for WCSPH; slope: 6% and 4% (about 1.7-2x
-//   margin over the measurement). For scale: gamma3 = 0.5 puts the floor bin 86% off,
-//   and IISPH at its default 0.1% tolerance is 20% / 17% off.
-INSTANTIATE_TEST_SUITE_P(
-    Physics, Hydrostatic,
-    ::testing::Values(
-        HydroCase{"iisph_extrapolation", R"("type": "iisph", "tolerance": 0.01, "boundary_pressure": "extrapolation")",
-                  R"("dt": 1e-3)", 0.10, 0.06, false},
-        HydroCase{"iisph_mirroring", R"("type": "iisph", "tolerance": 0.01, "boundary_pressure": "mirroring")",
-                  R"("dt": 1e-3)", 0.10, 0.06, false},
-        HydroCase{"iisph_zero", R"("type": "iisph", "tolerance": 0.01, "boundary_pressure": "zero")", R"("dt": 1e-3)",
-                  0.10, 0.06, true},
-        HydroCase{"wcsph_extrapolation", R"("type": "wcsph", "stiffness": 5e5, "boundary_pressure": "extrapolation")",
-                  R"("dt": 2e-4)", 0.06, 0.04, false},
-        HydroCase{"wcsph_mirroring", R"("type": "wcsph", "stiffness": 5e5, "boundary_pressure": "mirroring")",
-                  R"("dt": 2e-4)", 0.06, 0.04, false},
-        HydroCase{"wcsph_zero", R"("type": "wcsph", "stiffness": 5e5, "boundary_pressure": "zero")", R"("dt": 2e-4)",
-                  0.06, 0.04, true}),
-    [](const ::testing::TestParamInfo<HydroCase>& info) { return info.param.name; });
+INSTANTIATE_TEST_SUITE_P(Physics, Hydrostatic, ::testing::ValuesIn(analysis::hydrostatic_cases()),
+                         [](const ::testing::TestParamInfo<analysis::HydrostaticCase>& info) { return info.param.name; });
 
 // --- dam break: IISPH convergence and containment --------------------------------------------
 

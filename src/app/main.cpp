@@ -111,6 +111,21 @@ int main(int argc, char** argv) {
   suitecmd->add_option("--threads", suite.threads, "OpenMP threads")->check(CLI::PositiveNumber);
   suitecmd->add_option("--csv", suite.csv, "CSV output file (default renders/suite/suite.csv)");
 
+  sluice::app::ValidateOptions val;
+  CLI::App* validatecmd = app.add_subcommand("validate", "Validation against known answers: hydrostatic pressure, Martin & Moyce's dam break");
+  validatecmd->add_option("what", val.what, "hydrostatic or dam-break")->required()->check(CLI::IsMember({"hydrostatic", "dam-break"}));
+  validatecmd->add_option("--scene", val.scene, "Scene file (default scenes/validation/hydrostatic.json or dam_break_martin_moyce.json)");
+  validatecmd->add_option("-o,--output", val.output_dir, "Directory for the CSV files and figures (default renders/validation)");
+  validatecmd->add_option("--solver", val.solver, "dam-break: iisph, wcsph or both (default)")
+      ->check(CLI::IsMember({"iisph", "wcsph", "both"}));
+  validatecmd->add_option("--case", val.only, "hydrostatic: only this case, e.g. iisph_mirroring");
+  validatecmd->add_option("--spacing", val.spacing, "dam-break: particle spacing h [m] (default: the scene's, 0.02)")
+      ->check(CLI::PositiveNumber);
+  validatecmd->add_option("--max-rms", val.max_rms, "dam-break: bound on the RMS relative front error (default 0.20)")
+      ->check(CLI::PositiveNumber);
+  validatecmd->add_option("--threads", val.threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  validatecmd->add_option("--set", val.set, "Override a scene value: path=value")->take_all();
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*simulate) return run_simulate(sim);
@@ -120,6 +135,7 @@ int main(int argc, char** argv) {
     if (*compare) return run_compare(cmp);
     if (*benchrender) return run_bench_render(brender);
     if (*suitecmd) return run_suite(suite);
+    if (*validatecmd) return run_validate(val);
   } catch (const sluice::SceneError& e) {
     std::fprintf(stderr, "sluice: scene error: %s\n", e.what());
     return 2;

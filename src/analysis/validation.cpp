@@ -1,0 +1,200 @@
+#include "analysis/validation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "sim/simulation.h"
+
+namespace sluice::analysis {
+
+namespace {
+
+double gravity_magnitude(const Scene& scene) { return scene.solver.gravity.norm(); }
+
+double max_speed(const Simulation& sim) {
+  double v = 0;
+  for (const Vec2& u : sim.fluid().v) v = std::max(v, u.norm());
+  return v;
+}
+
+}  // namespace
+
+// --- hydrostatic tank ----------------------------------------------------------------------
+
+HydrostaticResult run_hydrostatic(const Scene& scene, double width, double average_from, bool zero_pressure_wall) {
+  Simulation sim(scene);
+  const double h = scene.spacing, rho0 = scene.solver.rest_density, g = gravity_magnitude(scene);
+  const double bin = 2 * h;
+  HydrostaticResult r;
+  std::vector<double> sum_p, sum_d;
+  std::vector<long> count;
+  double floor_depth = 0;
+  while (!sim.finished()) {
+    const StepStats st = sim.step();
+    ++r.steps;
+    r.capped += scene.solver.type == SolverType::IISPH && st.iterations >= scene.solver.max_iterations;
+    if (st.time < average_from) continue;
+    const FluidParticles& f = sim.fluid();
+    double top = -std::numeric_limits<double>::infinity();
+    for (const Vec2& x : f.x) top = std::max(top, x.y());
+    r.surface = top + 0.5 * h;  // the surface row's particles reach h/2 above their centres
+    floor_depth = r.surface;    // the floor is at y = 0
+    for (Index i = 0; i < f.size(); ++i) {
+      const Vec2 x = f.x[i];
+      if (x.x() < 3 * h || x.x() > width - 3 * h) continue;
+      const double d = r.surface - x.y();
+      const std::size_t b = static_cast<std::size_t>(std::max(0.0, d / bin));
+      if (b >= count.size()) {
+        count.resize(b + 1, 0);
+        sum_p.resize(b + 1, 0.0);
+        sum_d.resize(b + 1, 0.0);
+      }
+      sum_p[b] += f.p[i];
+      sum_d[b] += d;
+      ++count[b];
+    }
+  }
+  r.max_speed_end = max_speed(sim);
+  // The least-squares slope through the origin of p against d: rho0 g for a hydrostatic
+  // column (Eq. 25's boundary extrapolation assumes exactly this profile).
+  const double d_max = zero_pressure_wall ? floor_depth - 3 * h : std::numeric_limits<double>::infinity();
+  double sxx = 0, sxy = 0;
+  for (std::size_t b = 0; b < count.size(); ++b) {
+    if (count[b] == 0) continue;
+    DepthBin db;
+    db.samples = count[b];
+    db.depth = sum_d[b] / count[b];
+    db.pressure = sum_p[b] / count[b];
+    db.ratio = db.pressure / (rho0 * g * db.depth);
+    r.bins.push_back(db);
+    if (db.depth > floor_depth - 2 * h) r.floor_ratio = std::max(r.floor_ratio, db.ratio);
+    if (db.depth <= 3 * h || db.depth >= d_max) continue;  // surface rows: p is clamped at 0 there
+    sxx += count[b] * db.depth * db.depth;
+    sxy += count[b] * db.depth * db.pressure;
+    if (std::abs(db.ratio - 1.0) > r.worst_bin_error) {
+      r.worst_bin_error = std::abs(db.ratio - 1.0);
+      r.worst_depth = db.depth;
+    }
+  }
+  r.slope_error = sxx > 0 ? std::abs(sxy / sxx / (rho0 * g) - 1.0) : std::numeric_limits<double>::infinity();
+  return r;
+}
+
+// IISPH runs at tolerance 0.01 % instead of the default 0.1 %: at dt = 1e-3 a step without
+// half of the hydrostatic pressure compresses a 0.5 m column by only ~g dt^2 / h = 0.05 %,
+// below 0.1 %, so at the default the per-step pressure swings between ~0.5 and ~2.4 times
+// hydrostatic and even its 0.5 s average is 17 % high (measured).
+// Tolerances, from errors measured at h = 0.02 (worst bin / slope):
+//   IISPH extrapolation 5.5 % / 3.2 %, mirroring 6.4 % / 3.5 %, zero 3.7 % / 2.9 % (floor
+//   rows excluded); WCSPH (k = 5e5, 1 % compression at the floor) 3.6 % / 1.6 %,
+//   3.2 % / 2.0 %, 1.6 % / 0.9 %. The worst bins are the rows next to the floor, where the
+//   boundary model dominates. Bins: 10 % for IISPH and 6 % for WCSPH; slope: 6 % and 4 %
+//   (about 1.7-2x margin). For scale: gamma3 = 0.5 puts the floor bin 86 % off, and IISPH
+//   at its default 0.1 % tolerance is 20 % / 17 % off.
+std::vector<HydrostaticCase> hydrostatic_cases() {
+  const std::vector<std::string> iisph{"solver.type=iisph", "solver.tolerance=0.01", "time.dt=1e-3"};
+  const std::vector<std::string> wcsph{"solver.type=wcsph", "solver.stiffness=5e5", "time.dt=2e-4"};
+  std::vector<HydrostaticCase> cases;
+  for (const char* method : {"extrapolation", "mirroring", "zero"}) {
+    for (int w = 0; w < 2; ++w) {
+      HydrostaticCase c;
+      c.name = std::string(w ? "wcsph_" : "iisph_") + method;
+      c.set = w ? wcsph : iisph;
+      c.set.push_back(std::string("solver.boundary_pressure=") + method);
+      c.bin_tolerance = w ? 0.06 : 0.10;
+      c.slope_tolerance = w ? 0.04 : 0.06;
+      c.zero_pressure_wall = std::string(method) == "zero";
+      cases.push_back(c);
+    }
+  }
+  return cases;
+}
+
+// --- dam break ---------------------------------------------------------------------------------
+
+// Martin, J. C. and Moyce, W. J. (1952), "An experimental study of the collapse of liquid
+// columns on a rigid horizontal plane", Phil. Trans. R. Soc. A 244, 312-324, Figure 3:
+// the surge front of the n^2 = 2 column with a = 2.25 in, as (T, Z).
+std::vector<std::pair<double, double>> martin_moyce_n2_a225() {
+  return {{0.832, 1.217}, {1.219, 1.474}, {1.997, 2.292}, {2.547, 2.995}, {3.345, 4.134},
+          {4.034, 4.944}, {4.418, 5.881}, {5.091, 6.980}, {5.685, 7.945}, {6.306, 8.966},
+          {6.822, 9.986}, {7.439, 10.963}, {8.031, 11.977}, {8.633, 13.005}, {9.237, 13.970}};
+}
+
+DamBreakResult run_dam_break_front(const Scene& scene) {
+  if (scene.fluid_x.empty()) throw SceneError(scene.file + ": /fluid: the dam break needs a fluid column");
+  const double h = scene.spacing, g = gravity_magnitude(scene);
+  // The column's extent from its particles, each of which fills an h x h cell.
+  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
+  for (const Vec2& x : scene.fluid_x) {
+    x0 = std::min(x0, x.x());
+    x1 = std::max(x1, x.x());
+    y0 = std::min(y0, x.y());
+    y1 = std::max(y1, x.y());
+  }
+  DamBreakResult r;
+  const double back = x0 - 0.5 * h;
+  r.a = x1 - x0 + h;
+  r.height = y1 - y0 + h;
+  // The far wall: the nearest boundary sample beyond the column at floor level.
+  double wall = std::numeric_limits<double>::infinity();
+  for (const Vec2& b : scene.boundary_x)
+    if (b.x() > x1 && b.y() > y0 && b.y() < y0 + r.height) wall = std::min(wall, b.x());
+  // The front stops being the experiment's free surge once it is within a few h of the
+  // wall (the wall's kernel support reaches 2h ahead of it).
+  r.wall_Z = (wall - 3 * h - back) / r.a;
+  const auto experiment = martin_moyce_n2_a225();
+  if (!(r.wall_Z > experiment.front().second))
+    throw SceneError(scene.file + ": /boundaries: the channel ends " + std::to_string(wall - back) +
+                     " m from the column's back wall, before the experiment's first point (Z = " +
+                     std::to_string(experiment.front().second) + "); make it longer than " +
+                     std::to_string(experiment.back().second * r.a) + " m to compare all points");
+
+  const double Tscale = std::sqrt(2 * g / r.a);
+  const auto t0 = std::chrono::steady_clock::now();
+  Simulation sim(scene);
+  double iterations = 0;
+  auto record = [&] {
+    double front = -std::numeric_limits<double>::infinity();
+    for (const Vec2& x : sim.fluid().x) front = std::max(front, x.x());
+    FrontSample s;
+    s.t = sim.time();
+    s.T = s.t * Tscale;
+    s.z = front + 0.5 * h - back;
+    s.Z = s.z / r.a;
+    r.front.push_back(s);
+    return s.Z < r.wall_Z;
+  };
+  record();
+  while (!sim.finished()) {
+    const StepStats st = sim.step();
+    ++r.steps;
+    iterations += st.iterations;
+    if (st.frame >= 0 && !record()) break;  // at the wall: nothing more to compare
+  }
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.avg_iterations = r.steps ? iterations / r.steps : 0;
+
+  // Linear interpolation of the simulated Z(T) at each measured T within range.
+  double sum = 0;
+  for (const auto& [T, Z] : experiment) {
+    if (Z >= r.wall_Z) break;
+    auto it = std::lower_bound(r.front.begin(), r.front.end(), T,
+                               [](const FrontSample& s, double value) { return s.T < value; });
+    if (it == r.front.end() || it == r.front.begin()) continue;
+    const FrontSample& b = *it;
+    const FrontSample& a = *(it - 1);
+    const double w = (T - a.T) / (b.T - a.T);
+    const double Zs = a.Z + w * (b.Z - a.Z);
+    const double e = (Zs - Z) / Z;
+    r.compared.push_back({T, Z, Zs, e});
+    sum += e * e;
+  }
+  r.rms_relative_error = r.compared.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                            : std::sqrt(sum / static_cast<double>(r.compared.size()));
+  return r;
+}
+
+}  // namespace sluice::analysis

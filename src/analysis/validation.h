@@ -1,0 +1,84 @@
+#pragma once
+// Validation against known answers: the hydrostatic tank (pressure against depth, compared
+// with rho0 g d) and the dam break against Martin & Moyce's 1952 experiment (surge front
+// over time). Shared by `sluice validate` and the tests, so the figure a user reproduces
+// is computed by the code CI checks.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace sluice::analysis {
+
+// --- hydrostatic tank ----------------------------------------------------------------------
+
+// One depth bin (2h) of the time-averaged pressure profile.
+struct DepthBin {
+  double depth = 0;     // mean depth below the free surface of the samples [m]
+  double pressure = 0;  // mean pressure [Pa m]
+  double ratio = 0;     // pressure / (rho0 g depth)
+  long samples = 0;
+};
+
+struct HydrostaticResult {
+  std::string name;
+  std::vector<DepthBin> bins;
+  long steps = 0, capped = 0;  // steps, and steps that hit max_iterations (IISPH)
+  double surface = 0;          // free-surface height at the end [m]
+  double worst_bin_error = 0;  // max |ratio - 1| over the checked bins
+  double worst_depth = 0;      // its depth [m]
+  double slope_error = 0;      // |fitted dp/dd / (rho0 g) - 1| over the checked bins
+  double floor_ratio = 0;      // largest ratio in the bins within 2h of the floor
+  double max_speed_end = 0;    // [m/s]
+};
+
+// Settles `scene` (a lidless tank whose floor is at y = 0, filled from x = 0 to `width`)
+// and averages p per depth bin over every step after `average_from` seconds, for the
+// particles at least 3h from the side walls: one step's IISPH pressure is noisy, its
+// average is not. Bins deeper than 3h are checked; with `zero_pressure_wall` (p_b = 0,
+// whose floor rows carry up to ~1.75 rho0 g d, thesis section 4.2.3) the rows within 3h
+// of the floor are left out of the check and reported as floor_ratio.
+HydrostaticResult run_hydrostatic(const Scene& scene, double width, double average_from, bool zero_pressure_wall);
+
+// The six standard cases: {IISPH, WCSPH} x {extrapolation, mirroring, zero}, as overrides
+// of scenes/validation/hydrostatic.json, with the tolerances the tests hold them to.
+struct HydrostaticCase {
+  std::string name;
+  std::vector<std::string> set;
+  double bin_tolerance, slope_tolerance;
+  bool zero_pressure_wall;
+};
+std::vector<HydrostaticCase> hydrostatic_cases();
+
+// --- dam break against Martin & Moyce (1952) -----------------------------------------------
+
+// Surge front of the collapsing column of width a and height 2a (their n^2 = 2), in their
+// normalisation: T = t sqrt(2 g / a), Z = z / a with z the front's distance from the
+// column's back wall. The measured points for a = 2.25 in, read from their Figure 3.
+std::vector<std::pair<double, double>> martin_moyce_n2_a225();
+
+struct FrontSample {
+  double t = 0, T = 0;  // time [s] and T
+  double z = 0, Z = 0;  // front distance from the back wall [m] and Z
+};
+
+struct DamBreakResult {
+  double a = 0, height = 0;           // column width and height [m] (from the scene's fluid)
+  double wall_Z = 0;                  // Z at which the front meets the far wall (comparison ends before)
+  std::vector<FrontSample> front;     // at every frame time
+  struct Point {
+    double T, Z_experiment, Z_simulated, relative_error;
+  };
+  std::vector<Point> compared;        // the experiment's points inside the simulated range
+  double rms_relative_error = 0;      // sqrt(mean(relative_error^2)) over `compared`
+  long steps = 0;
+  double avg_iterations = 0, wall_seconds = 0;
+};
+
+// Runs the scene (one rectangular fluid block against the left wall of a long channel)
+// and compares its front with the experiment. Throws SceneError when the scene's fluid is
+// not one block or the channel is too short to reach any measured point.
+DamBreakResult run_dam_break_front(const Scene& scene);
+
+}  // namespace sluice::analysis
