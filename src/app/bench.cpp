@@ -9,7 +9,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include "analysis/plot.h"
+#include "analysis/sweep.h"
 #include "app/commands.h"
+#include "app/run.h"
 #include "io/output.h"
 #include "scene/scene.h"
 #include "sim/simulation.h"
@@ -44,10 +47,138 @@ BenchRow run_once(const Scene& scene, long steps, bool brute_force) {
   return row;
 }
 
+// --- sweep mode -----------------------------------------------------------------------------
+
+namespace fs = std::filesystem;
+
+std::string shell_quote(const std::string& s) {
+  if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./=:+,") == std::string::npos)
+    return s;
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+std::string self_executable() {
+  std::error_code ec;
+  const fs::path p = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string("sluice") : p.string();
+}
+
+void print_sweep_header() {
+  std::printf("%4s %-44s %-6s %5s %10s %7s %7s %10s %10s  %s\n", "run", "overrides", "solver", "stable", "s/sim_s",
+              "steps", "iters", "avg_err_%", "max_err_%", "pareto");
+}
+
+void print_sweep_row(std::size_t i, const analysis::SweepRun& r) {
+  std::string set;
+  for (const auto& s : r.set) set += (set.empty() ? "" : " ") + s;
+  std::printf("%4zu %-44s %-6s %5s %10.3f %7ld %7.2f %10.4f %10.4f  %s\n", i + 1, set.c_str(), r.solver.c_str(),
+              r.stable ? "yes" : "NO", r.seconds_per_simulated_second(), r.steps, r.avg_iterations,
+              r.avg_density_error, r.max_density_error, r.pareto ? "*" : "");
+  std::fflush(stdout);
+}
+
+// Time per simulated second against average density error, log-log, one colour per
+// solver, the Pareto front as a line.
+std::string sweep_plot_script(const std::string& title) {
+  return "set datafile missing \"NaN\"\n" + analysis::gnuplot_png_preamble("bench.png") +
+         "set title " + analysis::gnuplot_quote(title) + " noenhanced\n"
+         "set logscale xy\nset xlabel \"wall time per simulated second [s]\"\n"
+         "set ylabel \"average density error [%]\"\nset key bottom left\n"
+         "iisph(s, v) = (strcol(3) eq \"iisph\" && s == 1) ? v : NaN\n"
+         "wcsph(s, v) = (strcol(3) eq \"wcsph\" && s == 1) ? v : NaN\n"
+         "plot \"bench.csv\" using 11:(iisph($6, $13)) skip 1 with points pt 7 ps 1.6 lc rgb \"#1f77b4\" title \"IISPH\", \\\n"
+         "     \"bench.csv\" using 11:(wcsph($6, $13)) skip 1 with points pt 5 ps 1.6 lc rgb \"#d62728\" title \"WCSPH\", \\\n"
+         "     \"< awk -F, 'NR > 1 && $NF == 1' bench.csv | sort -t, -k11 -g\" using 11:13 with lines lc rgb \"black\" dt 2 title \"Pareto front\"\n";
+}
+
+void write_sweep_outputs(std::vector<analysis::SweepRun>& runs, const fs::path& dir, const std::string& title) {
+  analysis::mark_pareto_front(runs);
+  write_file_atomic((dir / "bench.csv").string(), analysis::sweep_csv(runs));
+  write_file_atomic((dir / "bench.md").string(), analysis::sweep_markdown(runs));
+  const std::string why = analysis::run_gnuplot((dir / "bench.gp").string(), sweep_plot_script(title));
+  if (!why.empty()) std::fprintf(stderr, "sluice: warning: no plot: %s (bench.csv and bench.md are written)\n", why.c_str());
+  std::printf("wrote %s, bench.md%s\n", (dir / "bench.csv").string().c_str(), why.empty() ? ", bench.png" : "");
+}
+
+int run_sweep(const BenchOptions& o) {
+  if (o.scenes.size() != 1)
+    throw view::FlagError("scenes", std::to_string(o.scenes.size()) + " given", "exactly one scene in sweep mode");
+  std::vector<analysis::SweepAxis> axes;
+  for (const auto& s : o.sweep) axes.push_back(analysis::parse_sweep(s));
+  const auto combos = analysis::sweep_combinations(axes);
+  std::vector<std::string> common = o.set;
+  if (o.duration > 0) common.push_back("time.duration=" + std::to_string(o.duration));
+  // Every combination must load before anything runs: a typo in the last value should
+  // not cost the sweep's first hours.
+  std::vector<Scene> scenes;
+  for (const auto& c : combos) {
+    std::vector<std::string> set = common;
+    set.insert(set.end(), c.begin(), c.end());
+    scenes.push_back(load_scene(o.scenes[0], set));
+  }
+  const fs::path dir = o.output_dir.empty() ? fs::path("renders/bench") / scenes[0].name : fs::path(o.output_dir);
+  if (!o.jobs.empty()) {
+    std::string text;
+    for (std::size_t i = 0; i < combos.size(); ++i) {
+      std::string line = shell_quote(self_executable()) + " bench " + shell_quote(o.scenes[0]);
+      for (const auto& s : common) line += " --set " + shell_quote(s);
+      for (const auto& s : combos[i]) line += " --set " + shell_quote(s);
+      if (o.threads > 0) line += " --threads " + std::to_string(o.threads);
+      char run[32];
+      std::snprintf(run, sizeof run, "run_%04zu", i + 1);
+      line += " -o " + shell_quote((dir / run).string());
+      text += line + "\n";
+    }
+    const fs::path jobs(o.jobs);
+    if (jobs.has_parent_path()) make_directory(jobs.parent_path());
+    write_file_atomic(o.jobs, text);
+    std::printf("wrote %zu command lines to %s; run them (e.g. parallel -j1 < %s), then: sluice bench --collect %s/run_* -o %s\n",
+                combos.size(), o.jobs.c_str(), o.jobs.c_str(), dir.string().c_str(), dir.string().c_str());
+    return 0;
+  }
+  make_directory(dir);
+  std::printf("sweep of %s: %zu runs, %d threads\n", o.scenes[0].c_str(), combos.size(), omp_get_max_threads());
+  print_sweep_header();
+  std::vector<analysis::SweepRun> runs;
+  for (std::size_t i = 0; i < combos.size(); ++i) {
+    runs.push_back(analysis::run_sweep_point(scenes[i], combos[i]));
+    print_sweep_row(i, runs.back());
+    // Kept current after every run: an interrupted sweep keeps what it measured.
+    write_file_atomic((dir / "bench.csv").string(), analysis::sweep_csv(runs));
+  }
+  std::printf("Pareto front (no other run both faster and more accurate):\n");
+  analysis::mark_pareto_front(runs);
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    if (runs[i].pareto) print_sweep_row(i, runs[i]);
+  write_sweep_outputs(runs, dir, scenes[0].name + ": time against error");
+  return 0;
+}
+
+int run_collect(const BenchOptions& o) {
+  if (o.output_dir.empty()) throw view::FlagError("-o", "(missing)", "--collect needs -o DIR for the merged results");
+  std::vector<analysis::SweepRun> runs;
+  for (const auto& d : o.collect) {
+    const auto part = analysis::read_sweep_csv((fs::path(d) / "bench.csv").string());
+    runs.insert(runs.end(), part.begin(), part.end());
+  }
+  const fs::path dir(o.output_dir);
+  make_directory(dir);
+  analysis::mark_pareto_front(runs);
+  print_sweep_header();
+  for (std::size_t i = 0; i < runs.size(); ++i) print_sweep_row(i, runs[i]);
+  write_sweep_outputs(runs, dir, (runs.empty() ? std::string("bench") : runs[0].scene) + ": time against error");
+  return 0;
+}
+
 }  // namespace
 
 int run_bench(const BenchOptions& o) {
   set_threads(o.threads);
+  if (!o.collect.empty()) return run_collect(o);
+  if (!o.sweep.empty() || !o.output_dir.empty() || !o.jobs.empty() || o.duration > 0) return run_sweep(o);
+  if (o.scenes.empty()) throw view::FlagError("scenes", "(none)", "one or more scene files");
   std::vector<BenchRow> rows;
   std::printf("%-18s %-6s %3s %8s %6s %7s %9s %9s %9s | %8s %8s %8s %8s %8s\n", "scene", "solver", "thr", "particles",
               "steps", "iters", "err_%", "dens_err%", "us/p-step", "neighb", "nonpres", "pressure", "integr", "moving");

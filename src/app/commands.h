@@ -26,6 +26,13 @@ struct BenchOptions {
   std::vector<std::string> set;
   std::string csv = "renders/bench/bench.csv";
   bool brute_force = false;  // O(n^2) neighbour search (the thesis' Figure 14 comparison)
+  // Sweep mode (any of these set): one scene, every combination of the swept values run
+  // to the scene's duration; bench.csv, bench.md and bench.png in `output_dir`.
+  std::vector<std::string> sweep;    // KEY=V1,V2,...
+  double duration = 0;               // > 0 overrides time.duration
+  std::string output_dir;            // default renders/bench/<scene name>
+  std::string jobs;                  // write the runs' command lines here instead of running them
+  std::vector<std::string> collect;  // merge the bench.csv files of these directories
 };
 int run_bench(const BenchOptions& o);
 

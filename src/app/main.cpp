@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
 
   BenchOptions bench;
   CLI::App* benchcmd = app.add_subcommand("bench", "Time scenes; print a table and write CSV");
-  benchcmd->add_option("scenes", bench.scenes, "Scene files")->required();
+  benchcmd->add_option("scenes", bench.scenes, "Scene files (one in sweep mode; none with --collect)");
   benchcmd->add_option("--steps", bench.steps, "Steps per run (0: the whole duration)")->check(CLI::NonNegativeNumber);
   benchcmd->add_option("--repeat", bench.repeat, "Runs per scene; the median is reported")
       ->check(CLI::PositiveNumber);
@@ -40,6 +40,12 @@ int main(int argc, char** argv) {
   benchcmd->add_option("--set", bench.set, "Override a scene value (applies to every scene)")->take_all();
   benchcmd->add_option("--csv", bench.csv, "CSV output file");
   benchcmd->add_flag("--brute-force", bench.brute_force, "O(n^2) neighbour search instead of the grid");
+  benchcmd->add_option("--sweep", bench.sweep, "Sweep a scene value: KEY=V1,V2,... (repeatable; every combination runs)");
+  benchcmd->add_option("--duration", bench.duration, "Sweep: simulated seconds per run (overrides time.duration)")
+      ->check(CLI::PositiveNumber);
+  benchcmd->add_option("-o,--output", bench.output_dir, "Sweep: directory for bench.csv, bench.md, bench.png (default renders/bench/<scene>)");
+  benchcmd->add_option("--jobs", bench.jobs, "Sweep: write one command line per run to this file instead of running");
+  benchcmd->add_option("--collect", bench.collect, "Merge the bench.csv of these directories into -o DIR")->take_all();
 
   // Image flags shared by `render` and `still`.
   auto add_image_options = [](CLI::App* cmd, ImageOptions& io) {

@@ -1,6 +1,7 @@
 // `sluice validate hydrostatic|dam-break`: the validation runs against known answers.
 // Each prints its error figures, writes CSV and a gnuplot figure (PNG) into the output
 // directory, and exits 1 when an error exceeds the bound the tests hold it to.
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -21,6 +22,14 @@ namespace {
 void report_figure(const std::string& why, const fs::path& png) {
   if (why.empty()) std::printf("figure: %s\n", png.string().c_str());
   else std::fprintf(stderr, "sluice: warning: no figure: %s (the CSV is written)\n", why.c_str());
+}
+
+// "iisph_mirroring" -> "IISPH, mirroring" for a legend.
+std::string case_label(const std::string& name) {
+  const auto u = name.find('_');
+  std::string solver = name.substr(0, u);
+  for (char& c : solver) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return solver + ", " + name.substr(u + 1) + (name.find("zero") != std::string::npos ? " (p_b = 0)" : "");
 }
 
 int validate_hydrostatic(const ValidateOptions& o, const fs::path& dir) {
@@ -67,11 +76,11 @@ int validate_hydrostatic(const ValidateOptions& o, const fs::path& dir) {
   gp << analysis::gnuplot_png_preamble("hydrostatic.png")
      << "set title \"Hydrostatic tank: time-averaged pressure / ({/Symbol r}_0 g d)\"\n"
         "set xlabel \"depth below the free surface d [m]\"\nset ylabel \"p / ({/Symbol r}_0 g d)\"\n"
-        "set yrange [0.7:1.8]\nset key top right\n"
+        "set yrange [0.7:1.9]\nset key top center\n"
         "plot 1 with lines lc rgb \"black\" dt 2 title \"exact\"";
   for (const auto& n : names)
-    gp << ", \"hydrostatic_profile.csv\" using 2:($1 eq " << analysis::gnuplot_quote(n)
-       << " ? $4 : NaN) with linespoints title " << analysis::gnuplot_quote(n);
+    gp << ", \"hydrostatic_profile.csv\" using 2:(strcol(1) eq " << analysis::gnuplot_quote(n)
+       << " ? $4 : NaN) with linespoints title " << analysis::gnuplot_quote(case_label(n)) << " noenhanced";
   gp << "\n";
   // The first column holds strings: read it as such.
   std::string script = gp.str();
@@ -140,7 +149,7 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
         "set xlabel \"T = t (2g/a)^{1/2}\"\nset ylabel \"Z = z / a\"\n"
         "plot \"martin_moyce_1952.csv\" using 1:2 skip 1 with points pt 7 ps 1.5 lc rgb \"black\" title \"experiment (a = 2.25 in)\"";
   for (const auto& s : solvers)
-    gp << ", \"dam_break_front.csv\" using 3:($1 eq " << analysis::gnuplot_quote(s) << " ? $5 : NaN) with lines title "
+    gp << ", \"dam_break_front.csv\" using 3:(strcol(1) eq " << analysis::gnuplot_quote(s) << " ? $5 : NaN) with lines title "
        << analysis::gnuplot_quote(s == "iisph" ? "IISPH" : "WCSPH");
   gp << "\n";
   report_figure(analysis::run_gnuplot((dir / "dam_break_front.gp").string(), gp.str()), dir / "dam_break_front.png");

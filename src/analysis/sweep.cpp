@@ -1,0 +1,210 @@
+#include "analysis/sweep.h"
+
+#include <omp.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+
+#include "sim/simulation.h"
+
+namespace sluice::analysis {
+
+namespace {
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::string cur;
+  std::istringstream in(s);
+  while (std::getline(in, cur, sep)) out.push_back(cur);
+  if (!s.empty() && s.back() == sep) out.push_back("");
+  return out;
+}
+
+// CSV fields here are numbers, names and overrides; quotes keep commas and semicolons.
+std::string quote(const std::string& s) {
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::vector<std::string> parse_csv_line(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cur;
+  bool in_quotes = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (in_quotes) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') cur += '"', ++i;
+      else if (c == '"') in_quotes = false;
+      else cur += c;
+    } else if (c == '"') {
+      in_quotes = true;
+    } else if (c == ',') {
+      out.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  return out;
+}
+
+std::string join(const std::vector<std::string>& v, const char* sep) {
+  std::string s;
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? sep : "") + v[i];
+  return s;
+}
+
+const char* kHeader =
+    "scene,set,solver,particles,threads,stable,message,steps,simulated_s,wall_s,s_per_simulated_s,avg_iterations,"
+    "avg_density_error_percent,max_density_error_percent,ms_neighbors,ms_nonpressure,ms_pressure,ms_integrate,"
+    "ms_total,ms_moving_boundaries,pareto";
+
+}  // namespace
+
+SweepAxis parse_sweep(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+    throw SceneError("--sweep " + text + ": expected KEY=V1,V2,... (KEY as for --set, e.g. solver.type=iisph,wcsph)");
+  SweepAxis a;
+  a.key = text.substr(0, eq);
+  a.values = split(text.substr(eq + 1), ',');
+  for (const auto& v : a.values)
+    if (v.empty()) throw SceneError("--sweep " + text + ": an empty value; values are separated by single commas");
+  return a;
+}
+
+std::vector<std::vector<std::string>> sweep_combinations(const std::vector<SweepAxis>& axes) {
+  std::vector<std::vector<std::string>> combos{{}};
+  for (const SweepAxis& a : axes) {
+    std::vector<std::vector<std::string>> next;
+    for (const auto& c : combos)
+      for (const auto& v : a.values) {
+        auto n = c;
+        n.push_back(a.key + "=" + v);
+        next.push_back(std::move(n));
+      }
+    combos = std::move(next);
+  }
+  return combos;
+}
+
+SweepRun run_sweep_point(const Scene& scene, const std::vector<std::string>& set) {
+  SweepRun r;
+  r.scene = scene.name;
+  r.set = set;
+  r.solver = to_string(scene.solver.type);
+  r.particles = static_cast<long>(scene.fluid_x.size());
+  r.threads = omp_get_max_threads();
+  double iterations = 0, error = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  Simulation sim(scene);
+  try {
+    while (!sim.finished()) {
+      const StepStats st = sim.step();
+      ++r.steps;
+      iterations += st.iterations;
+      error += st.density_error_percent;
+      r.max_density_error = std::max(r.max_density_error, st.density_error_percent);
+      const double ms[6] = {st.ms_neighbors, st.ms_nonpressure, st.ms_pressure, st.ms_integrate, st.ms_total, st.ms_boundary};
+      for (int k = 0; k < 6; ++k) r.ms_phase[k] += ms[k];
+    }
+  } catch (const SimulationUnstable& e) {
+    r.stable = false;
+    r.message = e.what();
+  }
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.simulated = sim.time();
+  const double ns = r.steps > 0 ? static_cast<double>(r.steps) : 1.0;
+  r.avg_iterations = iterations / ns;
+  r.avg_density_error = error / ns;
+  for (double& ms : r.ms_phase) ms /= ns;
+  return r;
+}
+
+void mark_pareto_front(std::vector<SweepRun>& runs) {
+  for (SweepRun& a : runs) {
+    a.pareto = a.stable;
+    if (!a.stable) continue;
+    const double ta = a.seconds_per_simulated_second(), ea = a.avg_density_error;
+    for (const SweepRun& b : runs) {
+      if (&a == &b || !b.stable) continue;
+      const double tb = b.seconds_per_simulated_second(), eb = b.avg_density_error;
+      if (tb <= ta && eb <= ea && (tb < ta || eb < ea)) {
+        a.pareto = false;
+        break;
+      }
+    }
+  }
+}
+
+std::string sweep_csv(const std::vector<SweepRun>& runs) {
+  std::string text = std::string(kHeader) + "\n";
+  for (const SweepRun& r : runs) {
+    char nums[640];
+    std::snprintf(nums, sizeof nums, "%ld,%.6g,%.6g,%.6g,%.4f,%.6f,%.6f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%d", r.steps,
+                  r.simulated, r.wall_seconds, r.seconds_per_simulated_second(), r.avg_iterations, r.avg_density_error,
+                  r.max_density_error, r.ms_phase[0], r.ms_phase[1], r.ms_phase[2], r.ms_phase[3], r.ms_phase[4],
+                  r.ms_phase[5], r.pareto ? 1 : 0);
+    text += quote(r.scene) + "," + quote(join(r.set, ";")) + "," + r.solver + "," + std::to_string(r.particles) + "," +
+            std::to_string(r.threads) + "," + (r.stable ? "1" : "0") + "," + quote(r.message) + "," + nums + "\n";
+  }
+  return text;
+}
+
+std::vector<SweepRun> read_sweep_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw SceneError(path + ": cannot open file");
+  std::string line;
+  if (!std::getline(in, line) || line != kHeader)
+    throw SceneError(path + ": line 1: not a sluice bench CSV (expected the header " + std::string(kHeader) + ")");
+  std::vector<SweepRun> runs;
+  for (long n = 2; std::getline(in, line); ++n) {
+    if (line.empty()) continue;
+    const auto f = parse_csv_line(line);
+    if (f.size() != 21) throw SceneError(path + ": line " + std::to_string(n) + ": expected 21 fields, found " + std::to_string(f.size()));
+    try {
+      SweepRun r;
+      r.scene = f[0];
+      if (!f[1].empty()) r.set = split(f[1], ';');  // overrides may hold spaces, never ';'
+      r.solver = f[2];
+      r.particles = std::stol(f[3]);
+      r.threads = std::stoi(f[4]);
+      r.stable = f[5] == "1";
+      r.message = f[6];
+      r.steps = std::stol(f[7]);
+      r.simulated = std::stod(f[8]);
+      r.wall_seconds = std::stod(f[9]);
+      r.avg_iterations = std::stod(f[11]);
+      r.avg_density_error = std::stod(f[12]);
+      r.max_density_error = std::stod(f[13]);
+      for (int k = 0; k < 6; ++k) r.ms_phase[k] = std::stod(f[14 + k]);
+      runs.push_back(r);
+    } catch (const std::logic_error&) {
+      throw SceneError(path + ": line " + std::to_string(n) + ": a field that should be a number is not");
+    }
+  }
+  return runs;
+}
+
+std::string sweep_markdown(const std::vector<SweepRun>& runs) {
+  std::string md =
+      "| run | overrides | solver | particles | stable | s / sim s | steps | iterations | avg err % | max err % | "
+      "neighb ms | nonpres ms | pressure ms | integr ms | Pareto |\n"
+      "|---:|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const SweepRun& r = runs[i];
+    char line[640];
+    std::snprintf(line, sizeof line, "| %zu | `%s` | %s | %ld | %s | %.3f | %ld | %.2f | %.4f | %.4f | %.3f | %.3f | %.3f | %.3f | %s |\n",
+                  i + 1, join(r.set, " ").c_str(), r.solver.c_str(), r.particles,
+                  r.stable ? "yes" : ("no, t = " + std::to_string(r.simulated)).c_str(), r.seconds_per_simulated_second(),
+                  r.steps, r.avg_iterations, r.avg_density_error, r.max_density_error, r.ms_phase[0], r.ms_phase[1],
+                  r.ms_phase[2], r.ms_phase[3], r.pareto ? "**yes**" : "");
+    md += line;
+  }
+  return md;
+}
+
+}  // namespace sluice::analysis

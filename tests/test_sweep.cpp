@@ -1,0 +1,94 @@
+// `sluice bench --sweep`: combinations, the Pareto front, the CSV round trip used by
+// --collect, and runs that do not depend on the sweep's order.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "analysis/sweep.h"
+#include "test_util.h"
+
+namespace sluice {
+namespace {
+
+TEST(Sweep, ParsesAxes) {
+  const auto a = analysis::parse_sweep("solver.type=iisph,wcsph");
+  EXPECT_EQ(a.key, "solver.type");
+  EXPECT_EQ(a.values, (std::vector<std::string>{"iisph", "wcsph"}));
+  for (const char* bad : {"solver.type", "=iisph", "time.dt=", "time.dt=1e-3,,2e-3", "time.dt=1e-3,"})
+    EXPECT_THROW(analysis::parse_sweep(bad), SceneError) << bad;
+}
+
+TEST(Sweep, CombinationsFirstAxisSlowest) {
+  const auto c = analysis::sweep_combinations(
+      {analysis::parse_sweep("a=1,2"), analysis::parse_sweep("b=x,y,z")});
+  ASSERT_EQ(c.size(), 6u);
+  EXPECT_EQ(c[0], (std::vector<std::string>{"a=1", "b=x"}));
+  EXPECT_EQ(c[2], (std::vector<std::string>{"a=1", "b=z"}));
+  EXPECT_EQ(c[3], (std::vector<std::string>{"a=2", "b=x"}));
+  EXPECT_EQ(analysis::sweep_combinations({}).size(), 1u);  // the scene as it is
+}
+
+analysis::SweepRun point(double wall, double error, bool stable = true) {
+  analysis::SweepRun r;
+  r.simulated = 1.0;
+  r.wall_seconds = wall;
+  r.avg_density_error = error;
+  r.stable = stable;
+  return r;
+}
+
+TEST(Sweep, ParetoFront) {
+  std::vector<analysis::SweepRun> runs{point(1, 0.5), point(2, 0.1), point(3, 0.2), point(2, 0.1),
+                                       point(0.5, 0.01, false), point(4, 0.05)};
+  analysis::mark_pareto_front(runs);
+  EXPECT_TRUE(runs[0].pareto);   // fastest stable run
+  EXPECT_TRUE(runs[1].pareto);   // ties with run 4: neither is better in one and not worse in the other
+  EXPECT_FALSE(runs[2].pareto);  // slower and less accurate than run 2
+  EXPECT_TRUE(runs[3].pareto);
+  EXPECT_FALSE(runs[4].pareto);  // unstable runs are never on the front, nor hide others
+  EXPECT_TRUE(runs[5].pareto);   // most accurate
+}
+
+TEST(Sweep, CsvRoundTrip) {
+  auto r = point(1.5, 0.25);
+  r.scene = "dam \"break\", small";
+  r.set = {"solver.type=wcsph", "boundaries.0.max=[1, 2]"};
+  r.solver = "wcsph";
+  r.stable = false;
+  r.message = "unstable at step 3, t = 0.1 s: x, y";
+  r.ms_phase[2] = 0.125;
+  const auto path = std::filesystem::temp_directory_path() / "sluice_sweep_roundtrip.csv";
+  std::ofstream(path) << analysis::sweep_csv({r, point(2, 0.1)});
+  const auto back = analysis::read_sweep_csv(path.string());
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[0].scene, r.scene);
+  EXPECT_EQ(back[0].set, r.set);
+  EXPECT_EQ(back[0].message, r.message);
+  EXPECT_FALSE(back[0].stable);
+  EXPECT_DOUBLE_EQ(back[0].ms_phase[2], 0.125);
+  EXPECT_DOUBLE_EQ(back[1].avg_density_error, 0.1);
+  std::ofstream(path) << "not,a,bench,csv\n";
+  EXPECT_THROW(analysis::read_sweep_csv(path.string()), SceneError);
+  std::filesystem::remove(path);
+}
+
+// Each run starts from the scene's initial state: the same combination gives the same
+// numbers whether it runs first or after another.
+TEST(Sweep, RunsDoNotDependOnOrder) {
+  const char* json = R"({"spacing": 0.04, "time": {"duration": 0.1, "dt": 1e-3},
+    "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.4, 0.8]}],
+    "boundaries": [{"shape": "box", "min": [0, 0], "max": [1.2, 1.2]}]})";
+  const std::vector<std::string> a{"solver.type=iisph"}, b{"solver.type=wcsph", "time.dt=2e-4"};
+  const auto a1 = analysis::run_sweep_point(test::scene_from_json(json, a), a);
+  const auto b1 = analysis::run_sweep_point(test::scene_from_json(json, b), b);
+  const auto a2 = analysis::run_sweep_point(test::scene_from_json(json, a), a);
+  EXPECT_EQ(a1.avg_density_error, a2.avg_density_error);
+  EXPECT_EQ(a1.max_density_error, a2.max_density_error);
+  EXPECT_EQ(a1.steps, a2.steps);
+  EXPECT_GT(b1.steps, a1.steps);
+  EXPECT_TRUE(a1.stable && b1.stable);
+}
+
+}  // namespace
+}  // namespace sluice
