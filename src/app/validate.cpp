@@ -145,7 +145,7 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
   std::ostringstream gp;
   gp << "set datafile missing \"NaN\"\n"
      << analysis::gnuplot_png_preamble("dam_break_front.png")
-     << "set title \"Dam break surge front against Martin & Moyce (1952), n^2 = 2\"\n"
+     << "set title \"Dam break surge front against Martin and Moyce (1952), n^2 = 2\"\n"
         "set xlabel \"T = t (2g/a)^{1/2}\"\nset ylabel \"Z = z / a\"\n"
         "plot \"martin_moyce_1952.csv\" using 1:2 skip 1 with points pt 7 ps 1.5 lc rgb \"black\" title \"experiment (a = 2.25 in)\"";
   for (const auto& s : solvers)
