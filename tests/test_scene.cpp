@@ -255,7 +255,7 @@ TEST(SceneErrors, MissingFile) {
     load_scene("scenes/does_not_exist.json");
     FAIL() << "no error";
   } catch (const SceneError& e) {
-    EXPECT_STREQ(e.what(), "scenes/does_not_exist.json: cannot open file");
+    EXPECT_STREQ(e.what(), "scenes/does_not_exist.json: cannot open scene file: no such file");
   }
 }
 

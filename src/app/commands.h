@@ -15,6 +15,7 @@ struct SimulateOptions {
   std::vector<std::string> set;
   std::vector<std::string> exports;  // csv, vtk
   bool quiet = false;
+  bool overwrite = false;  // replace a previous run in the output directory
 };
 int run_simulate(const SimulateOptions& o);
 
@@ -49,6 +50,7 @@ struct RenderOptions {
   int threads = 0;
   std::vector<std::string> set;
   bool quiet = false;
+  bool overwrite = false;  // replace a previous run in the output directory
 };
 int run_render(const RenderOptions& o);
 
@@ -104,5 +106,9 @@ struct ValidateOptions {
 int run_validate(const ValidateOptions& o);
 
 void set_threads(int threads);
+
+// "path=value" for a --set override from a numeric flag, with every digit of the value
+// (std::to_string keeps 6 decimals: --duration 1e-7 became time.duration=0.000000).
+std::string number_override(const std::string& path, double value);
 
 }  // namespace sluice::app

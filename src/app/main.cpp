@@ -1,7 +1,12 @@
 // sluice: 2D IISPH / WCSPH fluid simulator. Command-line entry point (CLI11).
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <string>
 
 #include "app/commands.h"
 #include "io/output.h"
@@ -10,39 +15,78 @@
 #include "scene/scene.h"
 #include "sim/simulation.h"
 
+namespace {
+
+// CLI11's PositiveNumber and NonNegativeNumber print the largest double in full when a
+// value fails; this check says what is allowed in words. `hi` bounds values that would
+// exhaust the machine (e.g. a billion threads).
+CLI::Validator number_check(bool integer, double lo, bool lo_open, double hi = HUGE_VAL) {
+  std::string allowed = std::string(integer ? "an integer " : "a number ") + (lo_open ? "> " : ">= ") +
+                        std::to_string(static_cast<long long>(lo));
+  if (hi != HUGE_VAL) allowed += " and <= " + std::to_string(static_cast<long long>(hi));
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        const char* begin = text.c_str();
+        char* end = nullptr;
+        errno = 0;
+        const double v = integer ? static_cast<double>(std::strtoll(begin, &end, 10)) : std::strtod(begin, &end);
+        const bool ok = end != begin && *end == '\0' && errno == 0 && std::isfinite(v) && (lo_open ? v > lo : v >= lo) &&
+                        v <= hi;
+        return ok ? std::string() : "expected " + allowed + ", got '" + text + "'";
+      },
+      allowed);
+}
+
+// CLI11 answers a flag mistake with a usage hint on a second line and exit codes of its
+// own (105, 106, 109, ...); sluice answers with one line and exit status 1, like any
+// other error that is not the scene's, the output's or the renderer's.
+int flag_error(const CLI::App& app, const CLI::ParseError& e) {
+  std::string what = e.what();
+  std::replace(what.begin(), what.end(), '\n', ' ');
+  const auto used = app.get_subcommands();
+  const std::string help = used.empty() ? "sluice --help" : "sluice " + used.front()->get_name() + " --help";
+  std::fprintf(stderr, "sluice: %s (see %s)\n", what.c_str(), help.c_str());
+  return 1;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace sluice::app;
   CLI::App app{"sluice: 2D implicit incompressible SPH (IISPH) and WCSPH fluid simulator"};
   app.set_version_flag("--version", SLUICE_VERSION);
   app.require_subcommand(1);
+  const CLI::Validator positive = number_check(false, 0, true);
+  const CLI::Validator threads = number_check(true, 1, false, 4096);
 
   SimulateOptions sim;
   CLI::App* simulate = app.add_subcommand("simulate", "Simulate a scene; write stats.csv, summary.json and exports");
   simulate->add_option("scene", sim.scene, "Scene file (JSON)")->required();
   simulate->add_option("-o,--output", sim.output_dir, "Output directory (default: the scene's output.directory)");
   simulate->add_option("--duration", sim.duration, "Simulated seconds (overrides time.duration)")
-      ->check(CLI::PositiveNumber);
-  simulate->add_option("--threads", sim.threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+      ->check(positive);
+  simulate->add_option("--threads", sim.threads, "OpenMP threads (default: all cores)")->check(threads);
   simulate->add_option("--set", sim.set, "Override a scene value: path=value, e.g. solver.tolerance=0.05")
       ->take_all();
   simulate->add_option("--export", sim.exports, "Particle exports at every frame: csv, vtk")
       ->delimiter(',')
       ->check(CLI::IsMember({"csv", "vtk"}));
   simulate->add_flag("-q,--quiet", sim.quiet, "No progress output");
+  simulate->add_flag("--overwrite", sim.overwrite, "Replace a previous run in the output directory");
 
   BenchOptions bench;
   CLI::App* benchcmd = app.add_subcommand("bench", "Time scenes; print a table and write CSV");
   benchcmd->add_option("scenes", bench.scenes, "Scene files (one in sweep mode; none with --collect)");
-  benchcmd->add_option("--steps", bench.steps, "Steps per run (0: the whole duration)")->check(CLI::NonNegativeNumber);
+  benchcmd->add_option("--steps", bench.steps, "Steps per run (0: the whole duration)")->check(number_check(true, 0, false));
   benchcmd->add_option("--repeat", bench.repeat, "Runs per scene; the median is reported")
-      ->check(CLI::PositiveNumber);
-  benchcmd->add_option("--threads", bench.threads, "OpenMP threads")->check(CLI::PositiveNumber);
+      ->check(number_check(true, 1, false));
+  benchcmd->add_option("--threads", bench.threads, "OpenMP threads")->check(threads);
   benchcmd->add_option("--set", bench.set, "Override a scene value (applies to every scene)")->take_all();
   benchcmd->add_option("--csv", bench.csv, "CSV output file");
   benchcmd->add_flag("--brute-force", bench.brute_force, "O(n^2) neighbour search instead of the grid");
   benchcmd->add_option("--sweep", bench.sweep, "Sweep a scene value: KEY=V1,V2,... (repeatable; every combination runs)");
   benchcmd->add_option("--duration", bench.duration, "Sweep: simulated seconds per run (overrides time.duration)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive);
   benchcmd->add_option("-o,--output", bench.output_dir, "Sweep: directory for bench.csv, bench.md, bench.png (default renders/bench/<scene>)");
   benchcmd->add_option("--jobs", bench.jobs, "Sweep: write one command line per run to this file instead of running");
   benchcmd->add_option("--collect", bench.collect, "Merge the bench.csv of these directories into -o DIR")->take_all();
@@ -66,22 +110,23 @@ int main(int argc, char** argv) {
   CLI::App* render = app.add_subcommand("render", "Simulate a scene and render PNG frames and an MP4 video");
   render->add_option("scene", ren.scene, "Scene file (JSON)")->required();
   render->add_option("-o,--output", ren.output_dir, "Output directory (default: the scene's output.directory)");
-  render->add_option("--fps", ren.fps, "Frames per second (overrides time.fps)")->check(CLI::PositiveNumber);
-  render->add_option("--duration", ren.duration, "Simulated seconds (overrides time.duration)")->check(CLI::PositiveNumber);
+  render->add_option("--fps", ren.fps, "Frames per second (overrides time.fps)")->check(positive);
+  render->add_option("--duration", ren.duration, "Simulated seconds (overrides time.duration)")->check(positive);
   render->add_option("--frames", ren.frames, "Render only frames A:B (the run stops at frame B)");
   add_image_options(render, ren.image);
   render->add_flag("--no-video", ren.no_video, "PNG frames only, no MP4");
-  render->add_option("--threads", ren.threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  render->add_option("--threads", ren.threads, "OpenMP threads (default: all cores)")->check(threads);
   render->add_option("--set", ren.set, "Override a scene value: path=value")->take_all();
   render->add_flag("-q,--quiet", ren.quiet, "No progress output");
+  render->add_flag("--overwrite", ren.overwrite, "Replace a previous run in the output directory");
 
   StillOptions still;
   CLI::App* stillcmd = app.add_subcommand("still", "Render one frame at a simulated time to a PNG");
   stillcmd->add_option("scene", still.scene, "Scene file (JSON)")->required();
-  stillcmd->add_option("--time", still.time, "Simulated time [s]")->required()->check(CLI::NonNegativeNumber);
+  stillcmd->add_option("--time", still.time, "Simulated time [s]")->required()->check(number_check(false, 0, false));
   stillcmd->add_option("-o,--output", still.output, "PNG file (default: <output directory>/still.png)");
   add_image_options(stillcmd, still.image);
-  stillcmd->add_option("--threads", still.threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  stillcmd->add_option("--threads", still.threads, "OpenMP threads")->check(threads);
   stillcmd->add_option("--set", still.set, "Override a scene value: path=value")->take_all();
 
   CompareOptions cmp;
@@ -97,11 +142,11 @@ int main(int argc, char** argv) {
   BenchRenderOptions brender;
   CLI::App* benchrender = app.add_subcommand("bench-render", "Time the renderer: draw, read-back, PNG per frame");
   benchrender->add_option("--particles", brender.particles, "Particle counts (default 10000 130000)")
-      ->delimiter(',')->check(CLI::PositiveNumber);
+      ->delimiter(',')->check(number_check(true, 1, false));
   benchrender->add_option("--resolution", brender.resolutions, "Resolutions WxH (default 1280x720 1920x1080)")
       ->delimiter(',');
   benchrender->add_option("--repeat", brender.repeat, "Frames timed per case; the median is reported")
-      ->check(CLI::PositiveNumber);
+      ->check(number_check(true, 1, false));
   benchrender->add_option("--msaa", brender.msaa, "0 or 4")->check(CLI::IsMember({0, 4}));
   benchrender->add_option("--egl", brender.egl, "auto, surfaceless, device")
       ->check(CLI::IsMember({"auto", "surfaceless", "device"}));
@@ -114,10 +159,10 @@ int main(int argc, char** argv) {
   suitecmd->add_option("--solver", suite.solver, "iisph, wcsph or both (default)")
       ->check(CLI::IsMember({"iisph", "wcsph", "both"}));
   suitecmd->add_option("--case", suite.only, "Run only this case");
-  suitecmd->add_option("--threads", suite.threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  suitecmd->add_option("--threads", suite.threads, "OpenMP threads")->check(threads);
   suitecmd->add_option("--csv", suite.csv, "CSV output file (default renders/suite/suite.csv)");
 
-  sluice::app::ValidateOptions val;
+  ValidateOptions val;
   CLI::App* validatecmd = app.add_subcommand("validate", "Validation against known answers: hydrostatic pressure, Martin & Moyce's dam break");
   validatecmd->add_option("what", val.what, "hydrostatic or dam-break")->required()->check(CLI::IsMember({"hydrostatic", "dam-break"}));
   validatecmd->add_option("--scene", val.scene, "Scene file (default scenes/validation/hydrostatic.json or dam_break_martin_moyce.json)");
@@ -126,13 +171,18 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"iisph", "wcsph", "both"}));
   validatecmd->add_option("--case", val.only, "hydrostatic: only this case, e.g. iisph_mirroring");
   validatecmd->add_option("--spacing", val.spacing, "dam-break: particle spacing h [m] (default: the scene's, 0.02)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive);
   validatecmd->add_option("--max-rms", val.max_rms, "dam-break: bound on the RMS relative front error (default 0.20)")
-      ->check(CLI::PositiveNumber);
-  validatecmd->add_option("--threads", val.threads, "OpenMP threads")->check(CLI::PositiveNumber);
+      ->check(positive);
+  validatecmd->add_option("--threads", val.threads, "OpenMP threads")->check(threads);
   validatecmd->add_option("--set", val.set, "Override a scene value: path=value")->take_all();
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    return flag_error(app, e);
+  }
   try {
     if (*simulate) return run_simulate(sim);
     if (*benchcmd) return run_bench(bench);

@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "app/commands.h"
+#include "app/output_dir.h"
 #include "app/run.h"
 #include "io/output.h"
 #include "render/frame.h"
@@ -59,8 +60,8 @@ class FrameWriter {
 int run_render(const RenderOptions& o) {
   set_threads(o.threads);
   std::vector<std::string> overrides = o.set;
-  if (o.duration > 0) overrides.push_back("time.duration=" + std::to_string(o.duration));
-  if (o.fps > 0) overrides.push_back("time.fps=" + std::to_string(o.fps));
+  if (o.duration > 0) overrides.push_back(number_override("time.duration", o.duration));
+  if (o.fps > 0) overrides.push_back(number_override("time.fps", o.fps));
   Scene scene = load_scene(o.scene, overrides);
 
   Index first = 0, last = std::numeric_limits<Index>::max();
@@ -73,7 +74,7 @@ int run_render(const RenderOptions& o) {
     // Stop the run at frame B: no need to simulate what is not rendered.
     const double end = b / scene.time.fps;
     if (end < scene.time.duration && end > 0) {
-      overrides.push_back("time.duration=" + std::to_string(end));
+      overrides.push_back(number_override("time.duration", end));
       scene = load_scene(o.scene, overrides);
     }
   }
@@ -82,6 +83,7 @@ int run_render(const RenderOptions& o) {
     throw FlagError("--resolution", o.image.resolution, "H.264 (yuv420p) needs even width and height; or pass --no-video");
   const fs::path dir = o.output_dir.empty() ? fs::path(scene.output.directory) : fs::path(o.output_dir);
   const fs::path frames_dir = dir / "frames";
+  prepare_output_directory(dir, o.overwrite, scene.name);
   make_directory(frames_dir);
 
   FrameRenderer renderer(config.frame);  // before the run: EGL problems show at once
@@ -118,8 +120,8 @@ int run_render(const RenderOptions& o) {
   try {
     encode_video(job);
   } catch (const VideoError& e) {
-    std::fprintf(stderr, "sluice: video error: %s\nsluice: the frames are kept in %s\n", e.what(), frames_dir.c_str());
-    return 5;
+    // One line: the cause, then where the work done so far is.
+    throw VideoError(std::string(e.what()) + "; the frames are kept in " + frames_dir.string());
   }
   if (!o.quiet) std::fprintf(stderr, "sluice: wrote %s\n", job.output.c_str());
   return 0;
@@ -129,7 +131,7 @@ int run_still(const StillOptions& o) {
   set_threads(o.threads);
   if (!(o.time >= 0)) throw FlagError("--time", std::to_string(o.time), "must be >= 0");
   std::vector<std::string> overrides = o.set;
-  if (o.time > 0) overrides.push_back("time.duration=" + std::to_string(o.time));
+  if (o.time > 0) overrides.push_back(number_override("time.duration", o.time));
   const Scene scene = load_scene(o.scene, overrides);
   const ImageConfig config = resolve_image(o.image, scene);
   const fs::path out = o.output.empty() ? fs::path(scene.output.directory) / "still.png" : fs::path(o.output);

@@ -16,7 +16,9 @@ using FrameCallback = std::function<void(const Simulation& sim, Index frame, con
 // Creates `dir` and its parents; throws OutputError.
 void make_directory(const std::filesystem::path& dir);
 
-// Throws SimulationUnstable (after writing summary.json with "status": "unstable").
+// Throws SimulationUnstable (after renaming stats.csv.tmp to stats.csv and writing
+// summary.json with "status": "unstable"; the message says what is kept where). Other
+// exceptions pass through after the same with "status": "failed", where that can be written.
 void run_scene(const Scene& scene, const std::filesystem::path& dir, bool quiet, const FrameCallback& on_frame);
 
 }  // namespace sluice::app

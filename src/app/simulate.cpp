@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "app/commands.h"
+#include "app/output_dir.h"
 #include "app/run.h"
 #include "io/output.h"
 #include "scene/scene.h"
@@ -18,6 +19,12 @@ namespace fs = std::filesystem;
 
 void set_threads(int threads) {
   if (threads > 0) omp_set_num_threads(threads);
+}
+
+std::string number_override(const std::string& path, double value) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", value);
+  return path + "=" + buf;
 }
 
 namespace {
@@ -46,11 +53,11 @@ void make_directory(const fs::path& dir) {
 int run_simulate(const SimulateOptions& o) {
   set_threads(o.threads);
   std::vector<std::string> overrides = o.set;
-  if (o.duration > 0) overrides.push_back("time.duration=" + std::to_string(o.duration));
+  if (o.duration > 0) overrides.push_back(number_override("time.duration", o.duration));
   const Scene scene = load_scene(o.scene, overrides);
   const std::vector<std::string> exports = o.exports.empty() ? scene.output.export_formats : o.exports;
   const fs::path dir = o.output_dir.empty() ? fs::path(scene.output.directory) : fs::path(o.output_dir);
-  make_directory(dir);
+  prepare_output_directory(dir, o.overwrite, scene.name);
   const bool want_csv = std::find(exports.begin(), exports.end(), "csv") != exports.end();
   const bool want_vtk = std::find(exports.begin(), exports.end(), "vtk") != exports.end();
   if (want_csv || want_vtk) make_directory(dir / "particles");
@@ -75,7 +82,6 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
 
   Simulation sim(scene);
   StatsCsv csv((dir / "stats.csv").string());
-  on_frame(sim, 0, nullptr);
 
   RunTotals totals;
   nlohmann::json summary = {
@@ -88,17 +94,24 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
       {"boundary_particles", scene.boundary_x.size()},
       {"frames", sim.frame_count() + 1},
   };
-  auto write_summary = [&](const std::string& status, const std::string& message) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  // stats.csv under its real name first, then summary.json: a stats.csv without a
+  // summary.json is a run that was killed.
+  auto finish_files = [&](const std::string& status, const std::string& message) {
+    totals.wall_seconds = elapsed();
+    csv.finish();
     summary["status"] = status;
     if (!message.empty()) summary["message"] = message;
     summary["frames_written"] = sim.frame() + 1;
     summary["totals"] = totals.to_json(static_cast<long>(scene.fluid_x.size()));
-    write_file_atomic((dir / "summary.json").string(), summary.dump(2) + "\n");
+    // replace: a name or --set value that is not UTF-8 must not stop the summary
+    write_file_atomic((dir / "summary.json").string(),
+                      summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   };
 
-  const auto t0 = std::chrono::steady_clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   try {
+    on_frame(sim, 0, nullptr);
     while (!sim.finished()) {
       const StepStats st = sim.step();
       csv.write(st);
@@ -120,16 +133,23 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     }
   } catch (const SimulationUnstable& e) {
     if (tty) std::fprintf(stderr, "\n");
-    totals.wall_seconds = elapsed();
-    csv.flush();
-    write_summary("unstable", e.what());
-    std::fprintf(stderr, "sluice: %d frames written so far are kept in %s\n", sim.frame() + 1, dir.c_str());
+    finish_files("unstable", e.what());
+    // One message: what happened and what is kept.
+    throw SimulationUnstable(std::string(e.what()) + "; stats.csv, summary.json and the output up to frame " +
+                             std::to_string(sim.frame()) + " are kept in " + dir.string());
+  } catch (const std::exception& e) {
+    // A failure that is not the simulation's (a frame that cannot be rendered or
+    // written): the files of the run end with it, marked "failed".
+    if (tty) std::fprintf(stderr, "\n");
+    try {
+      finish_files("failed", e.what());
+    } catch (const std::exception&) {
+      // the first error is the one to report; ~StatsCsv removes what could not be finished
+    }
     throw;
   }
   if (tty) std::fprintf(stderr, "\n");
-  totals.wall_seconds = elapsed();
-  csv.flush();
-  write_summary("completed", "");
+  finish_files("completed", "");
   if (!quiet)
     std::fprintf(stderr, "sluice: %ld steps in %.1f s, %.2f iterations and %.4f%% error on average; wrote %s\n",
                  totals.steps, totals.wall_seconds, totals.sum_iterations / std::max(1.0, double(totals.steps)),

@@ -11,9 +11,25 @@ const char* StatsCsv::header() {
          "fluid_particles,frame,ms_neighbors,ms_nonpressure,ms_pressure,ms_integrate,ms_total,ms_boundary";
 }
 
-StatsCsv::StatsCsv(const std::string& path) : path_(path), out_(path) {
-  if (!out_) throw OutputError(path + ": cannot open for writing");
+StatsCsv::StatsCsv(const std::string& path) : path_(path), tmp_(path + ".tmp"), out_(tmp_) {
+  if (!out_) throw OutputError(tmp_ + ": cannot open for writing");
   out_ << header() << '\n';
+}
+
+StatsCsv::~StatsCsv() {
+  if (finished_) return;
+  out_.close();
+  std::error_code ignored;
+  std::filesystem::remove(tmp_, ignored);
+}
+
+void StatsCsv::finish() {
+  out_.close();
+  if (!out_) throw OutputError(tmp_ + ": write failed (disk full?)");
+  std::error_code ec;
+  std::filesystem::rename(tmp_, path_, ec);
+  if (ec) throw OutputError(path_ + ": cannot rename from " + tmp_ + ": " + ec.message());
+  finished_ = true;
 }
 
 void StatsCsv::write(const StepStats& s) {
@@ -23,19 +39,22 @@ void StatsCsv::write(const StepStats& s) {
                 s.max_cfl, s.fluid_particles, s.frame, s.ms_neighbors, s.ms_nonpressure, s.ms_pressure,
                 s.ms_integrate, s.ms_total, s.ms_boundary);
   out_ << line;
-  if (!out_) throw OutputError(path_ + ": write failed");
+  if (!out_) throw OutputError(tmp_ + ": write failed (disk full?)");
 }
 
 void write_file_atomic(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp";
+  std::error_code ec;
   {
     std::ofstream out(tmp, std::ios::binary);
     if (!out) throw OutputError(path + ": cannot open for writing");
     out << text;
-    out.flush();
-    if (!out) throw OutputError(path + ": write failed (disk full?)");
+    out.close();
+    if (!out) {
+      std::filesystem::remove(tmp, ec);  // a partial file must not stay behind
+      throw OutputError(path + ": write failed (disk full?)");
+    }
   }
-  std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec) throw OutputError(path + ": cannot rename from " + tmp + ": " + ec.message());
 }

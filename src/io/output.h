@@ -17,17 +17,26 @@ class OutputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// stats.csv: one row per step; columns documented in the README.
+// stats.csv: one row per step; columns documented in the README. The rows go to
+// `path.tmp`, renamed to `path` by finish() when the run has ended (completed, unstable
+// or failed, as summary.json says), so a stats.csv never belongs to a run still going
+// or killed. Destroyed without finish(), it removes the temporary file.
 class StatsCsv {
  public:
   explicit StatsCsv(const std::string& path);
+  ~StatsCsv();
+  StatsCsv(const StatsCsv&) = delete;
+  StatsCsv& operator=(const StatsCsv&) = delete;
   void write(const StepStats& s);
   void flush() { out_.flush(); }
+  // Closes the file and renames it to its real name; throws OutputError.
+  void finish();
   static const char* header();
 
  private:
-  std::string path_;
+  std::string path_, tmp_;
   std::ofstream out_;
+  bool finished_ = false;
 };
 
 // Writes `text` to `path` through `path.tmp` and a rename.

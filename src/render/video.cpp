@@ -55,9 +55,13 @@ void encode_video(const VideoJob& job) {
   pid_t pid = 0;
   const int rc = posix_spawnp(&pid, "ffmpeg", &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0)
+  if (rc != 0) {
+    // The child opened the log before exec failed; an empty log would suggest ffmpeg ran.
+    std::error_code ignored;
+    std::filesystem::remove(job.log, ignored);
     throw VideoError("cannot start ffmpeg (" + std::string(std::strerror(rc)) +
                      "; install it, e.g. apt-get install ffmpeg): " + cmd);
+  }
   int status = 0;
   while (waitpid(pid, &status, 0) < 0)
     if (errno != EINTR) throw VideoError("waiting for ffmpeg failed: " + std::string(std::strerror(errno)));

@@ -6,9 +6,11 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -26,6 +28,11 @@ using nlohmann::json;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMaxParticles = 2e7;  // guard against a typo in the spacing eating all memory
+// Frames of a run (duration x fps): frame numbers are 32-bit, and every frame is a file.
+constexpr double kMaxFrames = 1e7;
+// Nesting of JSON arrays and objects: a scene needs 7 levels; a hostile file of a
+// million '[' would overflow the stack where values are copied or printed.
+constexpr std::size_t kMaxDepth = 100;
 
 std::string num(double v) {
   char buf[40];
@@ -34,7 +41,8 @@ std::string num(double v) {
 }
 
 std::string show(const json& v) {
-  std::string s = v.dump();
+  // replace: an override's string value need not be UTF-8 (the parser's are)
+  std::string s = v.dump(-1, ' ', false, json::error_handler_t::replace);
   return s.size() > 60 ? s.substr(0, 57) + "..." : s;
 }
 
@@ -250,6 +258,9 @@ json parse_json(const std::string& text, const Context& ctx) {
     switch (event) {
       case json::parse_event_t::object_start:
       case json::parse_event_t::array_start:
+        if (frames.size() >= kMaxDepth)
+          ctx.fail(child_path(), "arrays and objects are nested more than " + std::to_string(kMaxDepth) +
+                                     " levels deep; a scene needs fewer than 10");
         frames.push_back({event == json::parse_event_t::array_start, 0, child_path(), "", {}});
         break;
       case json::parse_event_t::object_end:
@@ -385,6 +396,9 @@ TimeSettings read_time(Reader& r, const Context& ctx) {
   TimeSettings t;
   t.duration = r.number("duration", t.duration, Range::positive("[s]"));
   t.fps = r.number("fps", t.fps, Range::positive("[frames/s]"));
+  if (!(t.duration * t.fps <= kMaxFrames))
+    ctx.fail(r.path(), "duration " + num(t.duration) + " s at fps " + num(t.fps) + " makes " + num(std::ceil(t.duration * t.fps)) +
+                           " frames; the limit is " + num(kMaxFrames) + " (shorten duration or lower fps)");
   const json* dt = r.find("dt");
   const json* cfl = r.find("cfl");
   const bool fixed = dt && !dt->is_null(), has_cfl = cfl && !cfl->is_null();
@@ -613,6 +627,8 @@ std::vector<Vec2> read_sample_file(const std::filesystem::path& path, const std:
     if (!std::isfinite(x) || !std::isfinite(y))
       ctx.fail(json_path, where + ": '" + shown + "' is not a finite point; coordinates must be finite numbers [m]");
     out.emplace_back(x, y);
+    if (static_cast<double>(out.size()) > kMaxParticles)
+      ctx.fail(json_path, where + ": more than " + num(kMaxParticles) + " samples; the limit is " + num(kMaxParticles));
   }
   if (out.empty())
     ctx.fail(json_path, path.string() + ": no samples (only empty lines, comments or a header); give at least one line x,y");
@@ -748,6 +764,51 @@ void read_object_motion(Reader& r, const Context& ctx, BoundaryObject& obj) {
   }
 }
 
+// A count that is not finite (coordinates near the range of double) is as bad as a huge one.
+double finite_or_inf(double x) { return std::isfinite(x) ? x : kInf; }
+
+// What a boundary would cost: the samples BoundaryShape::sample() makes, layer by layer
+// as it does (offset layers of a container grow), and the pieces of one fluid spacing
+// that curve(h) cuts for the removal of covered fluid. Computed without making them, so
+// that a typo in a spacing, a layer spacing or a coordinate is refused before it takes
+// the machine's memory.
+struct BoundaryCost {
+  double samples = 0, curve_pieces = 0;
+};
+
+BoundaryCost boundary_cost(const shapes::BoundaryShape& b, double h) {
+  using Kind = shapes::BoundaryShape::Kind;
+  BoundaryCost c;
+  if (b.kind == Kind::Points) {
+    c.samples = static_cast<double>(b.points.size());
+    return c;
+  }
+  const bool ellipse = b.kind == Kind::Ellipse;
+  for (int k = 0; k < b.layers; ++k) {
+    const double d = (k + b.surface_offset) * b.layer_spacing;
+    if (ellipse) {
+      const Vec2 radii = b.radii + Vec2::Constant(b.fluid_inside ? d : -d);
+      if (radii.minCoeff() <= 0) break;
+      c.samples += std::max(3.0, finite_or_inf(shapes::ellipse_perimeter(radii.x(), radii.y()) / b.spacing));
+      continue;
+    }
+    const std::vector<Vec2> pts = d == 0 ? b.points : shapes::offset_chain(b.points, b.closed, b.fluid_left ? -d : d);
+    const std::size_t n = pts.size(), segs = b.closed ? n : n - 1;
+    for (std::size_t i = 0; i < segs; ++i)
+      c.samples += std::max(1.0, finite_or_inf(std::round(shapes::spacing_integral((pts[(i + 1) % n] - pts[i]).norm(),
+                                                                                     b.segment_spacing[i]))));
+    c.samples += b.closed ? 0 : 1;
+  }
+  if (ellipse) {  // curve(h) samples the ellipse at a quarter spacing
+    c.curve_pieces = std::max(64.0, finite_or_inf(4 * shapes::ellipse_perimeter(b.radii.x(), b.radii.y()) / h));
+  } else {
+    const std::size_t n = b.points.size(), segs = b.closed ? n : n - 1;
+    for (std::size_t i = 0; i < segs; ++i)
+      c.curve_pieces += std::max(1.0, finite_or_inf(std::ceil((b.points[(i + 1) % n] - b.points[i]).norm() / h)));
+  }
+  return c;
+}
+
 shapes::BoundaryShape read_boundary(Reader& r, const Context& ctx, std::size_t index, double h, BoundaryObject& obj) {
   std::string& name = obj.name;
   std::string& shape = obj.shape;
@@ -819,19 +880,25 @@ shapes::BoundaryShape read_boundary(Reader& r, const Context& ctx, std::size_t i
   b.surface_offset = r.number("surface_offset", 0.5, Range::at_least(0, "(in layer spacings)"));
   read_object_motion(r, ctx, obj);
   r.finish();
-
-  // Guard against absurd sample counts (e.g. a spacing typo).
-  double length = 0;
-  if (b.kind == shapes::BoundaryShape::Kind::Ellipse) {
-    length = shapes::ellipse_perimeter(b.radii.x(), b.radii.y()) / b.spacing;
-  } else {
-    for (std::size_t i = 0; i < b.segment_spacing.size(); ++i)
-      length += shapes::spacing_integral((b.points[(i + 1) % b.points.size()] - b.points[i]).norm(), b.segment_spacing[i]);
-  }
-  if (length * b.layers > kMaxParticles)
-    ctx.fail(r.path(), "would create about " + num(std::round(length * b.layers)) + " boundary samples; the limit is " +
-                           num(kMaxParticles) + " (check spacing and layers)");
   return b;
+}
+
+std::string about(double count) { return std::isfinite(count) ? "about " + num(std::round(count)) : "too many"; }
+
+// Guard against absurd sample counts (e.g. a spacing typo): refuses a boundary whose
+// cost alone, or with the objects before it (`total`, this one included), passes the limit.
+void check_boundary_cost(const Context& ctx, const std::string& path, const BoundaryCost& cost, const BoundaryCost& total) {
+  if (!(cost.samples <= kMaxParticles))
+    ctx.fail(path, "would create " + about(cost.samples) + " boundary samples; the limit is " + num(kMaxParticles) +
+                       " (check spacing, layers and layer_spacing)");
+  if (!(cost.curve_pieces <= kMaxParticles))
+    ctx.fail(path, "the curve would be cut into " + about(cost.curve_pieces) +
+                       " pieces of at most one fluid spacing (to clear the fluid next to it); the limit is " +
+                       num(kMaxParticles) + " (check the coordinates and /spacing)");
+  if (!(total.samples <= kMaxParticles) || !(total.curve_pieces <= kMaxParticles))
+    ctx.fail(path, "the boundaries up to this one would create " + about(total.samples) + " samples and " +
+                       about(total.curve_pieces) + " curve pieces; the limit is " + num(kMaxParticles) +
+                       " of each (check spacing and layers)");
 }
 
 }  // namespace
@@ -902,12 +969,17 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
 
   std::vector<shapes::BoundaryShape> walls;
   std::set<std::string> names;
+  BoundaryCost total;  // of all objects: each may stay under the limit, the sum must too
   resolved["boundaries"] = json::array();
   if (boundaries && !boundaries->is_array()) ctx.fail("/boundaries", "expected an array of boundary objects, got " + show(*boundaries));
   for (std::size_t i = 0; boundaries && i < boundaries->size(); ++i) {
     Reader r(ctx, &(*boundaries)[i], "/boundaries/" + std::to_string(i));
     BoundaryObject obj;
     walls.push_back(read_boundary(r, ctx, i, h, obj));
+    const BoundaryCost cost = boundary_cost(walls.back(), h);
+    total.samples += cost.samples;
+    total.curve_pieces += cost.curve_pieces;
+    check_boundary_cost(ctx, r.path(), cost, total);
     if (!names.insert(obj.name).second)
       ctx.fail(r.at("name"), "duplicate name \"" + obj.name + "\"; boundary names must be unique");
     resolved["boundaries"].push_back(r.resolved());
@@ -919,6 +991,12 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
   for (std::size_t i = 0; i < walls.size(); ++i) {
     scene.objects[i].geometry = walls[i];
     const auto samples = walls[i].sample();
+    // Offsets of coordinates near the range of double overflow; nothing downstream
+    // (grids, volumes) can place a sample at infinity.
+    for (const Vec2& p : samples)
+      if (!std::isfinite(p.x()) || !std::isfinite(p.y()))
+        ctx.fail("/boundaries/" + std::to_string(i), "its samples would have coordinates beyond the range of numbers "
+                                                     "(coordinates, radii or layer_spacing too large); keep them far below 1e300");
     scene.objects[i].first = static_cast<Index>(scene.boundary_x.size());
     scene.objects[i].count = static_cast<Index>(samples.size());
     scene.boundary_x.insert(scene.boundary_x.end(), samples.begin(), samples.end());
@@ -983,8 +1061,15 @@ Index count_fluid_in_solids(const Scene& scene, const std::vector<Vec2>& fluid_x
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
   std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status))
+    throw SceneError(path + ": cannot open scene file: no such file" +
+                     (ec && ec != std::errc::no_such_file_or_directory ? " (" + ec.message() + ")" : std::string()));
+  if (std::filesystem::is_directory(status))
+    throw SceneError(path + ": is a directory; expected a scene file (JSON), e.g. scenes/dam_break.json");
+  if (!std::filesystem::is_regular_file(status)) throw SceneError(path + ": not a regular file; expected a scene file (JSON)");
   std::ifstream in(path, std::ios::binary);
-  if (!in || !std::filesystem::is_regular_file(path, ec)) throw SceneError(path + ": cannot open file");
+  if (!in) throw SceneError(path + ": cannot open scene file: " + std::strerror(errno));
   std::stringstream ss;
   ss << in.rdbuf();
   return parse_scene(ss.str(), path, overrides);

@@ -1,0 +1,90 @@
+#include "app/output_dir.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "app/run.h"
+#include "io/output.h"
+
+namespace sluice::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Folders of per-frame files (frames/, particles/) count as a previous run only when
+// something is in them: an empty frames/ left by a run that failed before its first
+// frame (e.g. no EGL display) must not block the retry.
+bool holds_run_output(const fs::path& entry) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(entry, ec);
+  if (ec || !fs::exists(st)) return false;
+  if (!fs::is_directory(st)) return true;
+  return !fs::is_empty(entry, ec) && !ec;
+}
+
+// What a run writes inside frames/ and particles/: frame_NNNNN.{png,csv,vtk} and their
+// temporary names. Nothing else there is removed.
+bool is_frame_file(const std::string& name) {
+  return name.starts_with("frame_") && (name.ends_with(".png") || name.ends_with(".csv") || name.ends_with(".vtk") ||
+                                        name.ends_with(".tmp"));
+}
+
+void remove_entry(const fs::path& p) {
+  std::error_code ec;
+  fs::remove(p, ec);
+  if (ec) throw OutputError(p.string() + ": cannot remove the previous run's file: " + ec.message());
+}
+
+// Removes one previous-run entry: a file, or a folder's frame files and then the folder
+// when that left it empty.
+void remove_previous(const fs::path& entry) {
+  std::error_code ec;
+  if (!fs::is_directory(fs::symlink_status(entry, ec))) {
+    remove_entry(entry);
+    return;
+  }
+  for (const fs::directory_entry& e : fs::directory_iterator(entry, ec))
+    if (is_frame_file(e.path().filename().string())) remove_entry(e.path());
+  if (ec) throw OutputError(entry.string() + ": cannot list the previous run's files: " + ec.message());
+  if (fs::is_empty(entry, ec)) fs::remove(entry, ec);
+}
+
+void check_writable(const fs::path& dir) {
+  // access() also answers EROFS for a read-only file system; root passes the permission
+  // bits, so a later write can still fail (and is reported then).
+  if (access(dir.c_str(), W_OK | X_OK) != 0)
+    throw OutputError(dir.string() + ": output directory is not writable: " + std::strerror(errno));
+}
+
+}  // namespace
+
+std::vector<std::string> previous_run_files(const std::string& scene_name) {
+  return {"stats.csv",   "stats.csv.tmp", "summary.json", "summary.json.tmp",           "frames",
+          "particles",   "ffmpeg.log",    scene_name + ".mp4", scene_name + ".mp4.tmp.mp4"};
+}
+
+void prepare_output_directory(const fs::path& dir, bool overwrite, const std::string& scene_name) {
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw OutputError(dir.string() + ": output directory exists and is not a directory");
+  make_directory(dir);
+  check_writable(dir);
+
+  std::vector<std::string> found;
+  for (const std::string& name : previous_run_files(scene_name))
+    if (holds_run_output(dir / name)) found.push_back(name);
+  if (found.empty()) return;
+  if (!overwrite) {
+    std::string list;
+    for (const std::string& name : found)
+      list += (list.empty() ? "" : ", ") + name + (fs::is_directory(dir / name, ec) ? "/" : "");
+    throw OutputError(dir.string() + ": output directory holds a previous run (" + list +
+                      "); pass --overwrite to replace it, or choose another directory with -o");
+  }
+  for (const std::string& name : found) remove_previous(dir / name);
+}
+
+}  // namespace sluice::app

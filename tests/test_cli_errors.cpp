@@ -1,0 +1,403 @@
+// The `sluice` program on bad input, run as a subprocess (the issue "Bad input"): each
+// case gives exactly one line on stderr, starting with "sluice:" and naming the file,
+// the JSON path, the value and what is allowed; a specific exit status; no crash or
+// sanitizer report; and no file that looks complete but is not (no *.tmp left, no
+// stats.csv without a summary.json, nothing at all written for a scene or flag error).
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+extern char** environ;
+
+namespace sluice {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A folder of its own for one case: `work` is the program's working directory, the
+// captured output lies beside it so that it is not part of what the program left.
+class CaseDir {
+ public:
+  CaseDir() {
+    std::string tmpl = (fs::temp_directory_path() / "sluice_cli_XXXXXX").string();
+    if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
+    base_ = tmpl;
+    fs::create_directory(work());
+  }
+  ~CaseDir() {
+    std::error_code ec;
+    fs::remove_all(base_, ec);
+  }
+  CaseDir(const CaseDir&) = delete;
+  CaseDir& operator=(const CaseDir&) = delete;
+  fs::path work() const { return base_ / "work"; }
+  fs::path base() const { return base_; }
+
+ private:
+  fs::path base_;
+};
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void write_text(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p, std::ios::binary) << text;
+}
+
+struct Result {
+  int status = -1;  // exit status, or 128 + signal
+  std::string out, err;
+};
+
+// Runs SLUICE_EXE with `args` in `dir.work()`, without a shell. OMP_NUM_THREADS=1: the
+// cases are tiny, and test processes must not compete for the shared cores. `path`
+// replaces PATH when not empty.
+Result run_sluice(const CaseDir& dir, const std::vector<std::string>& args, const std::string& path = "") {
+  std::vector<std::string> argv_s = {SLUICE_EXE};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  std::vector<std::string> env_s;
+  for (char** e = environ; *e; ++e) {
+    const std::string var = *e;
+    if (var.starts_with("OMP_NUM_THREADS=") || (!path.empty() && var.starts_with("PATH="))) continue;
+    env_s.push_back(var);
+  }
+  env_s.push_back("OMP_NUM_THREADS=1");
+  if (!path.empty()) env_s.push_back("PATH=" + path);
+  std::vector<char*> envp;
+  for (std::string& e : env_s) envp.push_back(e.data());
+  envp.push_back(nullptr);
+
+  const std::string out = (dir.base() / "stdout").string(), err = (dir.base() / "stderr").string();
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addchdir_np(&actions, dir.work().c_str());
+  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
+  posix_spawn_file_actions_destroy(&actions);
+  Result r;
+  if (rc != 0) {
+    r.err = std::string("cannot start ") + SLUICE_EXE + ": " + std::strerror(rc);
+    return r;
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) break;
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.out = read_text(out);
+  r.err = read_text(err);
+  return r;
+}
+
+// Every file and folder under `root` with its content ("<dir>" for folders).
+std::map<std::string, std::string> snapshot(const fs::path& root) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(root)) {
+    const std::string rel = fs::relative(e.path(), root).string();
+    files[rel] = e.is_directory() ? "<dir>" : read_text(e.path());
+  }
+  return files;
+}
+
+// What a run may leave: complete files only. Temporary names mean a write was cut
+// short; stats.csv and summary.json come as a pair, and the summary is valid JSON with
+// a status. Entries in `before` (what the case set up) are not the program's doing.
+void expect_no_partial_files(const fs::path& root, const std::map<std::string, std::string>& before = {}) {
+  for (const auto& e : fs::recursive_directory_iterator(root)) {
+    if (before.contains(fs::relative(e.path(), root).string())) continue;
+    const std::string name = e.path().filename().string();
+    EXPECT_EQ(name.find(".tmp"), std::string::npos) << "temporary file left: " << e.path();
+    if (name == "stats.csv" || name == "summary.json") {
+      const fs::path other = e.path().parent_path() / (name == "stats.csv" ? "summary.json" : "stats.csv");
+      EXPECT_TRUE(fs::exists(other)) << e.path() << " without " << other;
+    }
+    if (name == "summary.json") {
+      const auto j = nlohmann::json::parse(read_text(e.path()), nullptr, false);
+      EXPECT_TRUE(j.is_object() && j.contains("status")) << e.path() << " is not a complete summary";
+    }
+  }
+}
+
+// The checks every bad input must pass: the status, one line on stderr starting with
+// "sluice:" that holds every fragment, no trace of a crash.
+void expect_one_clear_line(const Result& r, int status, const std::vector<std::string>& fragments) {
+  EXPECT_EQ(r.status, status) << "stderr: " << r.err;
+  ASSERT_FALSE(r.err.empty());
+  EXPECT_EQ(r.err.rfind("sluice:", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.back(), '\n') << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "more than one line:\n" << r.err;
+  for (const std::string& f : fragments) EXPECT_NE(r.err.find(f), std::string::npos) << "missing '" << f << "' in: " << r.err;
+  for (const char* crash : {"terminate", "Aborted", "Sanitizer", "runtime error", "Segmentation", "core dumped"})
+    EXPECT_EQ(r.err.find(crash), std::string::npos) << r.err;
+}
+
+// A scene that runs in milliseconds: 36 particles in a box, 4 steps, frames 0 and 1.
+// `extra` are top-level members, each ending with a comma.
+std::string tiny(const std::string& extra = "",
+                 const std::string& fluid = R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
+                 const std::string& boundaries = R"([{"shape": "box", "min": [0, 0], "max": [0.5, 0.5]}])") {
+  return "{" + extra + R"( "name": "tiny", "spacing": 0.05, "time": {"duration": 0.02, "fps": 50, "dt": 0.005},
+  "fluid": )" + fluid + R"(,
+  "boundaries": )" + boundaries + "}\n";
+}
+
+struct Case {
+  std::string name;
+  std::map<std::string, std::string> files;  // written into the working directory first
+  std::vector<std::string> args;
+  int status;
+  std::vector<std::string> fragments;
+  bool writes_nothing = true;  // the working directory must be left exactly as it was
+};
+
+std::vector<Case> cases() {
+  const std::string ok = tiny();
+  const std::string previous_summary = R"({"status": "completed"})";
+  return {
+      // --- the scene file -----------------------------------------------------------------
+      {"malformed JSON", {{"bad.json", "{\"spacing\": 0.05,\n \"fluid\": [,]}"}}, {"simulate", "bad.json", "-q"}, 2,
+       {"sluice: scene error: bad.json:2:12: JSON parse error", "unexpected ','"}},
+      {"truncated file", {{"cut.json", ok.substr(0, 60)}}, {"simulate", "cut.json", "-q"}, 2,
+       {"cut.json:1:61: JSON parse error", "unexpected end of input"}},
+      {"empty file", {{"empty.json", ""}}, {"simulate", "empty.json", "-q"}, 2,
+       {"empty.json:1:1: JSON parse error", "unexpected end of input"}},
+      {"non-object root", {{"root.json", "[1, 2]"}}, {"simulate", "root.json", "-q"}, 2,
+       {"root.json: /: expected an object, got [1,2]"}},
+      {"unknown key", {{"x.json", tiny(R"("solver": {"tolerence": 0.1},)")}}, {"simulate", "x.json", "-q"}, 2,
+       {"x.json: /solver/tolerence: unknown key; allowed keys: type, rest_density", "tolerance"}},
+      {"wrong type", {{"x.json", tiny(R"("stability": {"bounds_margin": "far"},)")}}, {"simulate", "x.json", "-q"}, 2,
+       {"x.json: /stability/bounds_margin: expected a number, got \"far\""}},
+      {"out-of-range value", {{"x.json", tiny(R"("solver": {"omega": 1.5},)")}}, {"simulate", "x.json", "-q"}, 2,
+       {"x.json: /solver/omega: value 1.5 is out of range; must be in (0, 1]"}},
+      {"negative dt", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "time.dt=-0.001"}, 2,
+       {"x.json: /time/dt: value -0.001 is out of range; must be > 0 [s]"}},
+      {"unknown solver type", {{"x.json", tiny(R"("solver": {"type": "sph"},)")}}, {"simulate", "x.json", "-q"}, 2,
+       {"x.json: /solver/type: invalid value \"sph\"; must be one of: iisph, wcsph"}},
+      {"duplicate key", {{"x.json", tiny(R"("spacing": 0.1,)")}}, {"simulate", "x.json", "-q"}, 2,
+       {"x.json: /spacing: duplicate key"}},
+      {"fluid entirely inside walls",
+       {{"x.json", tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
+                        R"([{"shape": "circle", "center": [0.15, 0.15], "radius": 1, "fluid_side": "outside"}])")}},
+       {"simulate", "x.json", "-q"}, 2,
+       {"x.json: /fluid: the scene has no fluid particles (36 lattice points, all removed inside boundaries)"}},
+      {"zero fluid particles", {{"x.json", tiny("", "[]")}}, {"simulate", "x.json", "-q"}, 2,
+       {"x.json: /fluid: the scene has no fluid particles (0 lattice points"}},
+      {"missing scene file", {}, {"simulate", "nope.json", "-q"}, 2,
+       {"sluice: scene error: nope.json: cannot open scene file: no such file"}},
+      {"directory as the scene", {{"scenes/keep", ""}}, {"simulate", "scenes", "-q"}, 2,
+       {"scenes: is a directory; expected a scene file (JSON)"}},
+      {"nesting too deep", {{"deep.json", std::string(100000, '[') + std::string(100000, ']')}},
+       {"simulate", "deep.json", "-q"}, 2, {"deep.json: /0/0/0/", "nested more than 100 levels deep"}},
+
+      // --- overrides ----------------------------------------------------------------------
+      {"bad --set path", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "solver..tolerance=1"}, 2,
+       {"--set solver..tolerance=1: empty path component"}},
+      {"--set through a number", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "spacing.x=1"}, 2,
+       {"--set spacing.x=1: the path goes through /spacing, which is 0.05, not an object or array"}},
+      {"--set without =", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "spacing"}, 2,
+       {"--set spacing: expected path=value"}},
+      {"--set unknown key", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "time.fsp=30"}, 2,
+       {"x.json: /time/fsp: unknown key; allowed keys: duration, fps"}},
+      {"--set value not UTF-8", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "spacing=\xff"}, 2,
+       {"x.json: /spacing: expected a number, got \""}},
+
+      // --- resource limits ----------------------------------------------------------------
+      {"too many fluid particles", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "spacing=1e-6"}, 2,
+       {"x.json: /fluid/0: the fluid would have more than 20000000 lattice points; increase /spacing (now 1e-06 m)"}},
+      {"too many boundary samples", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "boundaries.0.spacing=1e-9"}, 2,
+       {"x.json: /boundaries/0: would create about", "boundary samples; the limit is 20000000"}},
+      {"layers spreading out", {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "boundaries.0.layers=1000", "--set", "boundaries.0.layer_spacing=100"}, 2,
+       {"x.json: /boundaries/0: would create about", "the limit is 20000000 (check spacing, layers and layer_spacing)"}},
+      {"too many frames", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "time.duration=1e6", "--set", "time.fps=1e3"}, 2,
+       {"x.json: /time: duration 1000000 s at fps 1000 makes 1000000000 frames; the limit is 10000000"}},
+      {"huge resolution", {{"x.json", tiny(R"("render": {"resolution": [100000, 720]},)")}}, {"simulate", "x.json", "-q"}, 2,
+       {"x.json: /render/resolution/0: value 100000 is out of range; must be an integer in [2, 16384]"}},
+
+      // --- flags --------------------------------------------------------------------------
+      {"bad flag value", {{"x.json", ok}}, {"simulate", "x.json", "--threads", "abc"}, 1,
+       {"sluice: --threads: expected an integer >= 1 and <= 4096, got 'abc'", "sluice simulate --help"}},
+      {"too many threads", {{"x.json", ok}}, {"simulate", "x.json", "--threads", "1000000000"}, 1,
+       {"--threads: expected an integer >= 1 and <= 4096, got '1000000000'"}},
+      {"negative duration", {{"x.json", ok}}, {"simulate", "x.json", "--duration=-1"}, 1,
+       {"--duration: expected a number > 0, got '-1'"}},
+      {"unknown export format", {{"x.json", ok}}, {"simulate", "x.json", "--export", "pdf"}, 1, {"--export", "pdf"}},
+      {"unknown flag", {{"x.json", ok}}, {"simulate", "x.json", "--frobnicate"}, 1, {"--frobnicate", "--help"}},
+      {"missing scene argument", {}, {"simulate"}, 1, {"scene is required", "sluice simulate --help"}},
+      {"no subcommand", {}, {}, 1, {"A subcommand is required", "sluice --help"}},
+      {"bad --frames", {{"x.json", ok}}, {"render", "x.json", "--frames", "5:1", "-q"}, 1,
+       {"sluice: error: --frames 5:1: expected A:B, whole frame numbers with 0 <= A <= B"}},
+      {"odd resolution for video", {{"x.json", ok}}, {"render", "x.json", "--resolution", "101x100", "-q"}, 1,
+       {"--resolution 101x100: H.264 (yuv420p) needs even width and height; or pass --no-video"}},
+      {"bad --resolution", {{"x.json", ok}}, {"render", "x.json", "--resolution", "99999x2", "-q"}, 1,
+       {"--resolution 99999x2: expected WxH with 2 <= W, H <= 16384"}},
+
+      // --- the output directory -------------------------------------------------------------
+      {"output directory under a file", {{"x.json", ok}, {"afile", "x"}}, {"simulate", "x.json", "-q", "-o", "afile/out"}, 3,
+       {"sluice: output error: afile/out: cannot create directory: Not a directory"}},
+      {"output directory under /dev/null", {{"x.json", ok}}, {"simulate", "x.json", "-q", "-o", "/dev/null/x"}, 3,
+       {"sluice: output error: /dev/null/x: cannot create directory"}},
+      {"output directory is a file", {{"x.json", ok}, {"afile", "x"}}, {"simulate", "x.json", "-q", "-o", "afile"}, 3,
+       {"afile: output directory exists and is not a directory"}},
+      {"output directory holds a previous run",
+       {{"x.json", ok}, {"out/stats.csv", "step\n1\n"}, {"out/summary.json", previous_summary}, {"out/frames/frame_00000.png", "png"}},
+       {"simulate", "x.json", "-q", "-o", "out"}, 3,
+       {"sluice: output error: out: output directory holds a previous run (stats.csv, summary.json, frames/); pass --overwrite"}},
+      {"previous run, render", {{"x.json", ok}, {"out/summary.json", previous_summary}, {"out/stats.csv", "step\n"}},
+       {"render", "x.json", "-q", "-o", "out"}, 3, {"out: output directory holds a previous run (stats.csv, summary.json)", "--overwrite"}},
+      {"killed run's temporary stats", {{"x.json", ok}, {"renders/tiny/stats.csv.tmp", "step\n1\n"}}, {"simulate", "x.json", "-q"}, 3,
+       {"renders/tiny: output directory holds a previous run (stats.csv.tmp)", "--overwrite"}},
+  };
+}
+
+TEST(CliErrors, Table) {
+  for (const Case& c : cases()) {
+    SCOPED_TRACE(c.name);
+    CaseDir dir;
+    for (const auto& [name, text] : c.files) write_text(dir.work() / name, text);
+    const auto before = snapshot(dir.work());
+    const Result r = run_sluice(dir, c.args);
+    expect_one_clear_line(r, c.status, c.fragments);
+    if (c.writes_nothing) {
+      EXPECT_EQ(snapshot(dir.work()), before) << "files were written or changed";
+    }
+    expect_no_partial_files(dir.work(), before);
+  }
+}
+
+TEST(CliErrors, UnwritableOutputDirectory) {
+  if (geteuid() == 0) GTEST_SKIP() << "root writes into read-only folders; the table covers a path under a file";
+  CaseDir dir;
+  write_text(dir.work() / "x.json", tiny());
+  fs::create_directory(dir.work() / "locked");
+  fs::permissions(dir.work() / "locked", fs::perms::owner_read | fs::perms::owner_exec);
+  const Result r = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "locked"});
+  fs::permissions(dir.work() / "locked", fs::perms::owner_all);
+  expect_one_clear_line(r, 3, {"sluice: output error: locked: output directory is not writable: Permission denied"});
+  EXPECT_TRUE(fs::is_empty(dir.work() / "locked"));
+}
+
+// A run that goes unstable keeps what it wrote, under the real names, with a summary
+// saying so, and says it in one line.
+TEST(CliErrors, UnstableRunKeepsStatsAndSummary) {
+  CaseDir dir;
+  // The fluid shoots out of the open box at 20 m/s and leaves the scene's bounds
+  // within a few steps, after frame 1.
+  write_text(dir.work() / "x.json", tiny(R"("stability": {"bounds_margin": 0.05},)"));
+  const Result r = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--set", "fluid.0.velocity=[0, 20]", "--set",
+                                    "time.duration=0.1", "--set", "time.fps=100"});
+  expect_one_clear_line(r, 4, {"sluice: unstable at step ", "stats.csv, summary.json and the output up to frame 1 are kept in out"});
+  expect_no_partial_files(dir.work());
+  ASSERT_TRUE(fs::exists(dir.work() / "out/stats.csv"));
+  EXPECT_NE(read_text(dir.work() / "out/stats.csv").find("\n1,"), std::string::npos) << "the step before the stop is kept";
+  const auto summary = nlohmann::json::parse(read_text(dir.work() / "out/summary.json"));
+  EXPECT_EQ(summary["status"], "unstable");
+}
+
+// --overwrite replaces a previous run: its frames beyond the new run's last one go, so
+// that a video made from the folder shows only the new run; other files stay.
+TEST(CliErrors, OverwriteReplacesPreviousRun) {
+  CaseDir dir;
+  write_text(dir.work() / "x.json", tiny());
+  ASSERT_EQ(run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out"}).status, 0);
+  write_text(dir.work() / "out/frames/frame_00007.png", "stale");
+  write_text(dir.work() / "out/notes.txt", "mine");
+  const std::string old_summary = read_text(dir.work() / "out/summary.json");
+
+  const Result refused = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out"});
+  expect_one_clear_line(refused, 3, {"out: output directory holds a previous run", "--overwrite"});
+  EXPECT_EQ(read_text(dir.work() / "out/summary.json"), old_summary);
+
+  const Result r = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--overwrite"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_FALSE(fs::exists(dir.work() / "out/frames")) << "the previous run's frames are gone";
+  EXPECT_EQ(read_text(dir.work() / "out/notes.txt"), "mine");
+  EXPECT_EQ(nlohmann::json::parse(read_text(dir.work() / "out/summary.json"))["status"], "completed");
+  expect_no_partial_files(dir.work());
+}
+
+// ffmpeg absent: the frames are kept, no video or log that suggests one, exit 5. Needs
+// a headless EGL display; skipped (with the reason) where there is none.
+TEST(RenderCli, FfmpegAbsentKeepsFrames) {
+  CaseDir dir;
+  write_text(dir.work() / "x.json", tiny());
+  fs::create_directory(dir.base() / "empty_bin");
+  const Result r = run_sluice(dir, {"render", "x.json", "-q", "-o", "out", "--resolution", "64x64"},
+                              (dir.base() / "empty_bin").string());
+  if (r.status == 6) GTEST_SKIP() << "no headless EGL here: " << r.err;
+  expect_one_clear_line(r, 5, {"sluice: video error: cannot start ffmpeg (No such file or directory; install it",
+                               "the frames are kept in out/frames"});
+  EXPECT_TRUE(fs::exists(dir.work() / "out/frames/frame_00000.png"));
+  EXPECT_TRUE(fs::exists(dir.work() / "out/frames/frame_00001.png"));
+  EXPECT_FALSE(fs::exists(dir.work() / "out/tiny.mp4"));
+  EXPECT_FALSE(fs::exists(dir.work() / "out/ffmpeg.log"));
+  EXPECT_EQ(nlohmann::json::parse(read_text(dir.work() / "out/summary.json"))["status"], "completed");
+  expect_no_partial_files(dir.work());
+}
+
+// --- parser limits, at the library level ----------------------------------------------------
+
+std::string parse_error(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    parse_scene(text, "x.json", overrides);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(SceneLimits, BoundariesTogetherStayUnderTheSampleLimit) {
+  // Each circle alone has about 6.1 million samples (one layer, half a spacing inside);
+  // four of them do not fit.
+  std::string walls = "[";
+  for (int i = 0; i < 4; ++i)
+    walls += std::string(i ? ", " : "") + R"({"shape": "circle", "center": [5, 5], "radius": 1, "spacing": 1e-6, "layers": 1})";
+  walls += "]";
+  const std::string e = parse_error(tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])", walls));
+  EXPECT_NE(e.find("x.json: /boundaries/3: the boundaries up to this one would create about 24504423 samples"), std::string::npos) << e;
+  EXPECT_NE(e.find("the limit is 20000000 of each"), std::string::npos) << e;
+}
+
+TEST(SceneLimits, CoordinatesNearTheRangeOfDouble) {
+  // Finite input whose offset layers overflow: refused instead of sampled at infinity.
+  const std::string e = parse_error(tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
+                                         R"([{"shape": "polyline", "points": [[1.7e308, 0], [1.7e308, 1]], "spacing": 1,
+                                              "layer_spacing": 1e308, "layers": 3}])"));
+  EXPECT_NE(e.find("x.json: /boundaries/0: "), std::string::npos) << e;
+}
+
+TEST(SceneLimits, LongCurveAtASmallFluidSpacing) {
+  // Few samples (spacing 1000 m) but a curve of 10^8 fluid spacings to clear the fluid along.
+  const std::string e = parse_error(tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
+                                         R"([{"shape": "polyline", "points": [[0, -1], [5e6, -1]], "spacing": 1000}])"));
+  EXPECT_NE(e.find("x.json: /boundaries/0: the curve would be cut into about 100000000 pieces"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace sluice
