@@ -15,6 +15,8 @@ struct SimulateOptions {
   std::vector<std::string> set;
   std::vector<std::string> exports;  // csv, vtk
   bool quiet = false;
+  int checkpoint_every = 0;  // frames between checkpoints (0: none)
+  std::string resume;        // run directory to continue (its recorded scene and flags)
 };
 int run_simulate(const SimulateOptions& o);
 
@@ -42,6 +44,8 @@ struct RenderOptions {
   int threads = 0;
   std::vector<std::string> set;
   bool quiet = false;
+  int checkpoint_every = 0;  // frames between checkpoints (0: none)
+  std::string resume;        // run directory to continue (its recorded scene and flags)
 };
 int run_render(const RenderOptions& o);
 

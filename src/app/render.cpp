@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "app/commands.h"
+#include "app/resume.h"
 #include "app/run.h"
 #include "io/output.h"
 #include "render/frame.h"
@@ -56,7 +57,8 @@ class FrameWriter {
 
 }  // namespace
 
-int run_render(const RenderOptions& o) {
+int run_render(const RenderOptions& given) {
+  const RenderOptions o = given.resume.empty() ? given : resumed_options(given);
   set_threads(o.threads);
   std::vector<std::string> overrides = o.set;
   if (o.duration > 0) overrides.push_back("time.duration=" + std::to_string(o.duration));
@@ -102,7 +104,8 @@ int run_render(const RenderOptions& o) {
     ms_render += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     ++rendered;
   };
-  run_scene(scene, dir, o.quiet, on_frame);
+  run_scene(scene, dir, o.quiet, on_frame,
+            make_run_control(o.resume, o.checkpoint_every, run_record(o), dir, scene, o.quiet));
   writer.wait();
   if (!o.quiet)
     std::fprintf(stderr, "sluice: %d frames in %s (render + read-back %.1f ms per frame; PNG encoding overlapped)\n",

@@ -11,9 +11,10 @@ const char* StatsCsv::header() {
          "fluid_particles,frame,ms_neighbors,ms_nonpressure,ms_pressure,ms_integrate,ms_total,ms_boundary";
 }
 
-StatsCsv::StatsCsv(const std::string& path) : path_(path), out_(path) {
+StatsCsv::StatsCsv(const std::string& path, bool append)
+    : path_(path), out_(path, append ? std::ios::app : std::ios::trunc) {
   if (!out_) throw OutputError(path + ": cannot open for writing");
-  out_ << header() << '\n';
+  if (!append) out_ << header() << '\n';
 }
 
 void StatsCsv::write(const StepStats& s) {

@@ -20,7 +20,9 @@ class OutputError : public std::runtime_error {
 // stats.csv: one row per step; columns documented in the README.
 class StatsCsv {
  public:
-  explicit StatsCsv(const std::string& path);
+  // append: continue the rows of an existing file, without a header (a resumed run,
+  // after truncate_stats_csv in io/checkpoint.h).
+  explicit StatsCsv(const std::string& path, bool append = false);
   void write(const StepStats& s);
   void flush() { out_.flush(); }
   static const char* header();
