@@ -16,6 +16,8 @@ struct SimulateOptions {
   std::vector<std::string> exports;  // csv, vtk
   bool quiet = false;
   bool overwrite = false;  // replace a previous run in the output directory
+  int checkpoint_every = 0;  // frames between checkpoints (0: none)
+  std::string resume;        // run directory to continue (its recorded scene and flags)
 };
 int run_simulate(const SimulateOptions& o);
 
@@ -51,6 +53,8 @@ struct RenderOptions {
   std::vector<std::string> set;
   bool quiet = false;
   bool overwrite = false;  // replace a previous run in the output directory
+  int checkpoint_every = 0;  // frames between checkpoints (0: none)
+  std::string resume;        // run directory to continue (its recorded scene and flags)
 };
 int run_render(const RenderOptions& o);
 

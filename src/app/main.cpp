@@ -9,6 +9,7 @@
 #include <string>
 
 #include "app/commands.h"
+#include "io/checkpoint.h"
 #include "io/output.h"
 #include "render/image.h"
 #include "render/video.h"
@@ -49,6 +50,26 @@ int flag_error(const CLI::App& app, const CLI::ParseError& e) {
   return 1;
 }
 
+// --checkpoint-every and --resume of `simulate` and `render`. With --resume the scene and
+// every flag that shapes the results come from DIR/checkpoints/run.json: only SCENE (a
+// moved scene file, checked by its hash), --threads, -q and --checkpoint-every may be
+// given again. SCENE is required without --resume.
+void add_checkpoint_options(CLI::App* cmd, int& every, std::string& resume, const std::string& scene) {
+  cmd->add_option("--checkpoint-every", every, "Write a checkpoint every N frames to DIR/checkpoints (newest two kept)")
+      ->check(number_check(true, 1, false));
+  CLI::Option* res = cmd->add_option("--resume", resume,
+                                     "Continue the interrupted run in DIR from its newest checkpoint, with its scene and flags");
+  for (CLI::Option* opt : cmd->get_options()) {
+    const std::string name = opt->get_name();
+    if (opt != res && name != "scene" && name != "--help" && name != "--threads" && name != "--quiet" &&
+        name != "--checkpoint-every")
+      res->excludes(opt);
+  }
+  cmd->callback([cmd, &resume, &scene] {
+    if (scene.empty() && resume.empty()) throw CLI::RequiredError(cmd->get_name() + ": SCENE (or --resume DIR)");
+  });
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -61,7 +82,7 @@ int main(int argc, char** argv) {
 
   SimulateOptions sim;
   CLI::App* simulate = app.add_subcommand("simulate", "Simulate a scene; write stats.csv, summary.json and exports");
-  simulate->add_option("scene", sim.scene, "Scene file (JSON)")->required();
+  simulate->add_option("scene", sim.scene, "Scene file (JSON); with --resume, the recorded one by default");
   simulate->add_option("-o,--output", sim.output_dir, "Output directory (default: the scene's output.directory)");
   simulate->add_option("--duration", sim.duration, "Simulated seconds (overrides time.duration)")
       ->check(positive);
@@ -73,6 +94,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"csv", "vtk"}));
   simulate->add_flag("-q,--quiet", sim.quiet, "No progress output");
   simulate->add_flag("--overwrite", sim.overwrite, "Replace a previous run in the output directory");
+  add_checkpoint_options(simulate, sim.checkpoint_every, sim.resume, sim.scene);
 
   BenchOptions bench;
   CLI::App* benchcmd = app.add_subcommand("bench", "Time scenes; print a table and write CSV");
@@ -108,7 +130,7 @@ int main(int argc, char** argv) {
 
   RenderOptions ren;
   CLI::App* render = app.add_subcommand("render", "Simulate a scene and render PNG frames and an MP4 video");
-  render->add_option("scene", ren.scene, "Scene file (JSON)")->required();
+  render->add_option("scene", ren.scene, "Scene file (JSON); with --resume, the recorded one by default");
   render->add_option("-o,--output", ren.output_dir, "Output directory (default: the scene's output.directory)");
   render->add_option("--fps", ren.fps, "Frames per second (overrides time.fps)")->check(positive);
   render->add_option("--duration", ren.duration, "Simulated seconds (overrides time.duration)")->check(positive);
@@ -119,6 +141,7 @@ int main(int argc, char** argv) {
   render->add_option("--set", ren.set, "Override a scene value: path=value")->take_all();
   render->add_flag("-q,--quiet", ren.quiet, "No progress output");
   render->add_flag("--overwrite", ren.overwrite, "Replace a previous run in the output directory");
+  add_checkpoint_options(render, ren.checkpoint_every, ren.resume, ren.scene);
 
   StillOptions still;
   CLI::App* stillcmd = app.add_subcommand("still", "Render one frame at a simulated time to a PNG");
@@ -204,6 +227,9 @@ int main(int argc, char** argv) {
   } catch (const sluice::render::RenderError& e) {
     std::fprintf(stderr, "sluice: render error: %s\n", e.what());
     return 6;
+  } catch (const sluice::CheckpointError& e) {
+    std::fprintf(stderr, "sluice: checkpoint error: %s\n", e.what());
+    return 7;
   } catch (const sluice::SimulationUnstable& e) {
     std::fprintf(stderr, "sluice: %s\n", e.what());
     return 4;

@@ -63,7 +63,7 @@ void check_writable(const fs::path& dir) {
 
 std::vector<std::string> previous_run_files(const std::string& scene_name) {
   return {"stats.csv",   "stats.csv.tmp", "summary.json", "summary.json.tmp",           "frames",
-          "particles",   "ffmpeg.log",    scene_name + ".mp4", scene_name + ".mp4.tmp.mp4"};
+          "particles",   "ffmpeg.log",    scene_name + ".mp4", scene_name + ".mp4.tmp.mp4", "checkpoints"};
 }
 
 void prepare_output_directory(const fs::path& dir, bool overwrite, const std::string& scene_name) {

@@ -14,6 +14,7 @@
 
 #include "app/commands.h"
 #include "app/output_dir.h"
+#include "app/resume.h"
 #include "app/run.h"
 #include "io/output.h"
 #include "render/frame.h"
@@ -57,7 +58,8 @@ class FrameWriter {
 
 }  // namespace
 
-int run_render(const RenderOptions& o) {
+int run_render(const RenderOptions& given) {
+  const RenderOptions o = given.resume.empty() ? given : resumed_options(given);
   set_threads(o.threads);
   std::vector<std::string> overrides = o.set;
   if (o.duration > 0) overrides.push_back(number_override("time.duration", o.duration));
@@ -83,7 +85,8 @@ int run_render(const RenderOptions& o) {
     throw FlagError("--resolution", o.image.resolution, "H.264 (yuv420p) needs even width and height; or pass --no-video");
   const fs::path dir = o.output_dir.empty() ? fs::path(scene.output.directory) : fs::path(o.output_dir);
   const fs::path frames_dir = dir / "frames";
-  prepare_output_directory(dir, o.overwrite, scene.name);
+  // A resumed run continues the run in `dir`; a fresh one must not mix with an old one.
+  if (o.resume.empty()) prepare_output_directory(dir, o.overwrite, scene.name);
   make_directory(frames_dir);
 
   FrameRenderer renderer(config.frame);  // before the run: EGL problems show at once
@@ -104,7 +107,8 @@ int run_render(const RenderOptions& o) {
     ms_render += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     ++rendered;
   };
-  run_scene(scene, dir, o.quiet, on_frame);
+  run_scene(scene, dir, o.quiet, on_frame,
+            make_run_control(o.resume, o.checkpoint_every, run_record(o), dir, scene, o.quiet));
   writer.wait();
   if (!o.quiet)
     std::fprintf(stderr, "sluice: %d frames in %s (render + read-back %.1f ms per frame; PNG encoding overlapped)\n",

@@ -8,6 +8,7 @@
 
 #include "app/commands.h"
 #include "app/output_dir.h"
+#include "app/resume.h"
 #include "app/run.h"
 #include "io/output.h"
 #include "scene/scene.h"
@@ -50,14 +51,16 @@ void make_directory(const fs::path& dir) {
   if (ec) throw OutputError(dir.string() + ": cannot create directory: " + ec.message());
 }
 
-int run_simulate(const SimulateOptions& o) {
+int run_simulate(const SimulateOptions& given) {
+  const SimulateOptions o = given.resume.empty() ? given : resumed_options(given);
   set_threads(o.threads);
   std::vector<std::string> overrides = o.set;
   if (o.duration > 0) overrides.push_back(number_override("time.duration", o.duration));
   const Scene scene = load_scene(o.scene, overrides);
   const std::vector<std::string> exports = o.exports.empty() ? scene.output.export_formats : o.exports;
   const fs::path dir = o.output_dir.empty() ? fs::path(scene.output.directory) : fs::path(o.output_dir);
-  prepare_output_directory(dir, o.overwrite, scene.name);
+  // A resumed run continues the run in `dir`; a fresh one must not mix with an old one.
+  if (o.resume.empty()) prepare_output_directory(dir, o.overwrite, scene.name);
   const bool want_csv = std::find(exports.begin(), exports.end(), "csv") != exports.end();
   const bool want_vtk = std::find(exports.begin(), exports.end(), "vtk") != exports.end();
   if (want_csv || want_vtk) make_directory(dir / "particles");
@@ -68,11 +71,13 @@ int run_simulate(const SimulateOptions& o) {
     if (want_vtk)
       write_file_atomic((particles / frame_name(frame, "vtk")).string(), particles_vtk(sim.fluid(), sim.time()));
   };
-  run_scene(scene, dir, o.quiet, export_frame);
+  run_scene(scene, dir, o.quiet, export_frame,
+            make_run_control(o.resume, o.checkpoint_every, run_record(o), dir, scene, o.quiet));
   return 0;
 }
 
-void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameCallback& on_frame) {
+void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameCallback& on_frame,
+               const RunControl& control) {
   make_directory(dir);
   const bool tty = isatty(fileno(stderr)) && !quiet;
   if (!quiet)
@@ -81,9 +86,13 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
                  to_string(scene.solver.type), omp_get_max_threads());
 
   Simulation sim(scene);
-  StatsCsv csv((dir / "stats.csv").string());
-
   RunTotals totals;
+  // Resumed: the checkpoint's state and totals, stats.csv cut back to its step, and its
+  // frame drawn again (the PNG may have been in flight when the run stopped).
+  const StepStats* resumed = control.resume ? resume_run(sim, totals, dir, *control.resume) : nullptr;
+  StatsCsv csv((dir / "stats.csv").string(), /*append=*/resumed != nullptr);
+  Checkpointer checkpointer(scene, dir, control);
+
   nlohmann::json summary = {
       {"sluice_version", SLUICE_VERSION},
       {"scene", {{"file", scene.file}, {"name", scene.name}}},
@@ -94,8 +103,12 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
       {"boundary_particles", scene.boundary_x.size()},
       {"frames", sim.frame_count() + 1},
   };
+  if (control.resume) summary["resumed_from"] = resume_summary(*control.resume);
   const auto t0 = std::chrono::steady_clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  const double wall_before = totals.wall_seconds;  // of the run a checkpoint continues
+  auto elapsed = [&] {
+    return wall_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
   // stats.csv under its real name first, then summary.json: a stats.csv without a
   // summary.json is a run that was killed.
   auto finish_files = [&](const std::string& status, const std::string& message) {
@@ -105,13 +118,14 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     if (!message.empty()) summary["message"] = message;
     summary["frames_written"] = sim.frame() + 1;
     summary["totals"] = totals.to_json(static_cast<long>(scene.fluid_x.size()));
+    if (checkpointer.enabled()) summary["checkpoints"] = checkpointer.summary();
     // replace: a name or --set value that is not UTF-8 must not stop the summary
     write_file_atomic((dir / "summary.json").string(),
                       summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   };
 
   try {
-    on_frame(sim, 0, nullptr);
+    on_frame(sim, sim.frame(), resumed);
     while (!sim.finished()) {
       const StepStats st = sim.step();
       csv.write(st);
@@ -119,6 +133,7 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
       if (st.frame < 0) continue;
       on_frame(sim, st.frame, &st);
       csv.flush();
+      checkpointer.at_frame(sim, st, totals, elapsed());
       const double wall = elapsed();
       const double eta = sim.time() > 0 ? wall / sim.time() * (scene.time.duration - sim.time()) : 0.0;
       if (tty) {

@@ -11,9 +11,10 @@ const char* StatsCsv::header() {
          "fluid_particles,frame,ms_neighbors,ms_nonpressure,ms_pressure,ms_integrate,ms_total,ms_boundary";
 }
 
-StatsCsv::StatsCsv(const std::string& path) : path_(path), tmp_(path + ".tmp"), out_(tmp_) {
+StatsCsv::StatsCsv(const std::string& path, bool append)
+    : path_(path), tmp_(path + ".tmp"), out_(tmp_, append ? std::ios::app : std::ios::trunc) {
   if (!out_) throw OutputError(tmp_ + ": cannot open for writing");
-  out_ << header() << '\n';
+  if (!append) out_ << header() << '\n';
 }
 
 StatsCsv::~StatsCsv() {

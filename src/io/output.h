@@ -23,7 +23,9 @@ class OutputError : public std::runtime_error {
 // or killed. Destroyed without finish(), it removes the temporary file.
 class StatsCsv {
  public:
-  explicit StatsCsv(const std::string& path);
+  // append: continue the rows of an existing `path.tmp`, without a header (a resumed
+  // run, after prepare_resumed_stats_csv in app/resume.h).
+  explicit StatsCsv(const std::string& path, bool append = false);
   ~StatsCsv();
   StatsCsv(const StatsCsv&) = delete;
   StatsCsv& operator=(const StatsCsv&) = delete;

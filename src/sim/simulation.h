@@ -37,6 +37,30 @@ struct SolverScratch {
 
 double lattice_kernel_sum(const CubicSpline2D& kernel);
 
+// Everything a simulation carries from one step to the next, in its own order (fluid
+// arrays as last sorted in space, boundary samples in their fixed spatial order), so
+// that restoring it into a Simulation of the same scene continues bit for bit
+// (checkpoints). What every step rebuilds before reading it (grids, neighbour lists,
+// solver scratch) is left out, and so is what the scene determines (masses, x0,
+// object ids, moving flags). The time step is not carried: Eq. 14 is evaluated from
+// the velocities at each step.
+struct SimulationState {
+  double time = 0;
+  long step = 0;
+  Index frame = 0;
+  // x, v, the density of the last step's start (exports and colours read it), the
+  // pressure (the next IISPH solve's warm start) and the initial-order id.
+  FluidParticles fluid;
+  // Boundary samples: moving ones change position, velocity and acceleration, volumes
+  // change near moving ones and are updated incrementally, pressures are the last
+  // solve's. Static positions are carried only to be checked against the scene.
+  std::vector<Vec2> boundary_x, boundary_v, boundary_a;
+  std::vector<double> boundary_volume, boundary_p;
+  // Static samples that had a moving one in their support at the last volume update:
+  // they are recomputed once more when it leaves (update_boundary_volumes).
+  std::vector<std::uint8_t> near_moving;
+};
+
 class Simulation {
  public:
   explicit Simulation(const Scene& scene);
@@ -50,6 +74,13 @@ class Simulation {
   long steps() const { return step_; }
   Index frame() const { return frame_; }           // last frame index reached (0 at t = 0)
   Index frame_count() const { return last_frame_; } // index of the final frame
+
+  // The state between two steps, and its restoration: a Simulation built from the same
+  // scene that restores state() continues exactly as this one would. restore() throws
+  // std::invalid_argument naming what does not fit this simulation (particle counts,
+  // ids, static boundary positions, time or frame out of range) and then changes nothing.
+  SimulationState state() const;
+  void restore(const SimulationState& s);
 
   const Scene& scene() const { return scene_; }
   const FluidParticles& fluid() const { return fluid_; }
