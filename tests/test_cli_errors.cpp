@@ -248,7 +248,7 @@ std::vector<Case> cases() {
        {"--duration: expected a number > 0, got '-1'"}},
       {"unknown export format", {{"x.json", ok}}, {"simulate", "x.json", "--export", "pdf"}, 1, {"--export", "pdf"}},
       {"unknown flag", {{"x.json", ok}}, {"simulate", "x.json", "--frobnicate"}, 1, {"--frobnicate", "--help"}},
-      {"missing scene argument", {}, {"simulate"}, 1, {"scene is required", "sluice simulate --help"}},
+      {"missing scene argument", {}, {"simulate"}, 1, {"SCENE (or --resume DIR) is required", "sluice simulate --help"}},
       {"no subcommand", {}, {}, 1, {"A subcommand is required", "sluice --help"}},
       {"bad --frames", {{"x.json", ok}}, {"render", "x.json", "--frames", "5:1", "-q"}, 1,
        {"sluice: error: --frames 5:1: expected A:B, whole frame numbers with 0 <= A <= B"}},
