@@ -6,56 +6,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "analysis/csv.h"
 #include "sim/simulation.h"
 
 namespace sluice::analysis {
 
 namespace {
-
-std::vector<std::string> split(const std::string& s, char sep) {
-  std::vector<std::string> out;
-  std::string cur;
-  std::istringstream in(s);
-  while (std::getline(in, cur, sep)) out.push_back(cur);
-  if (!s.empty() && s.back() == sep) out.push_back("");
-  return out;
-}
-
-// CSV fields here are numbers, names and overrides; quotes keep commas and semicolons.
-std::string quote(const std::string& s) {
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-std::vector<std::string> parse_csv_line(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cur;
-  bool in_quotes = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (in_quotes) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') cur += '"', ++i;
-      else if (c == '"') in_quotes = false;
-      else cur += c;
-    } else if (c == '"') {
-      in_quotes = true;
-    } else if (c == ',') {
-      out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  out.push_back(cur);
-  return out;
-}
-
-std::string join(const std::vector<std::string>& v, const char* sep) {
-  std::string s;
-  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? sep : "") + v[i];
-  return s;
-}
 
 const char* kHeader =
     "scene,set,solver,particles,threads,stable,message,steps,simulated_s,wall_s,s_per_simulated_s,avg_iterations,"
@@ -91,7 +47,8 @@ std::vector<std::vector<std::string>> sweep_combinations(const std::vector<Sweep
   return combos;
 }
 
-SweepRun run_sweep_point(const Scene& scene, const std::vector<std::string>& set) {
+SweepRun run_sweep_point(const Scene& scene, const std::vector<std::string>& set,
+                         const std::function<void(const StepStats&)>& on_step, bool brute_force) {
   SweepRun r;
   r.scene = scene.name;
   r.set = set;
@@ -101,9 +58,11 @@ SweepRun run_sweep_point(const Scene& scene, const std::vector<std::string>& set
   double iterations = 0, error = 0;
   const auto t0 = std::chrono::steady_clock::now();
   Simulation sim(scene);
+  sim.set_brute_force_neighbors(brute_force);
   try {
     while (!sim.finished()) {
       const StepStats st = sim.step();
+      if (on_step) on_step(st);
       ++r.steps;
       iterations += st.iterations;
       error += st.density_error_percent;
@@ -148,8 +107,8 @@ std::string sweep_csv(const std::vector<SweepRun>& runs) {
                   r.simulated, r.wall_seconds, r.seconds_per_simulated_second(), r.avg_iterations, r.avg_density_error,
                   r.max_density_error, r.ms_phase[0], r.ms_phase[1], r.ms_phase[2], r.ms_phase[3], r.ms_phase[4],
                   r.ms_phase[5], r.pareto ? 1 : 0);
-    text += quote(r.scene) + "," + quote(join(r.set, ";")) + "," + r.solver + "," + std::to_string(r.particles) + "," +
-            std::to_string(r.threads) + "," + (r.stable ? "1" : "0") + "," + quote(r.message) + "," + nums + "\n";
+    text += csv_quote(r.scene) + "," + csv_quote(join(r.set, ";")) + "," + r.solver + "," + std::to_string(r.particles) + "," +
+            std::to_string(r.threads) + "," + (r.stable ? "1" : "0") + "," + csv_quote(r.message) + "," + nums + "\n";
   }
   return text;
 }

@@ -1,10 +1,12 @@
 #pragma once
 // Parameter sweeps for `sluice bench --sweep`: the combinations of the swept scene values,
 // one clean run per combination, and the Pareto front of time against error.
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "scene/scene.h"
+#include "sim/stats.h"
 
 namespace sluice::analysis {
 
@@ -44,7 +46,10 @@ struct SweepRun {
 
 // Runs a scene from its initial state to its duration (a fresh Simulation: runs do not
 // depend on each other or on their order). An unstable run is recorded, not thrown.
-SweepRun run_sweep_point(const Scene& scene, const std::vector<std::string>& set);
+// `on_step` (when given) sees every step's statistics (stats.csv rows, distributions);
+// `brute_force` uses the O(n^2) neighbour search (the thesis' Figure 14 comparison).
+SweepRun run_sweep_point(const Scene& scene, const std::vector<std::string>& set,
+                         const std::function<void(const StepStats&)>& on_step = {}, bool brute_force = false);
 
 // Marks the Pareto front of (seconds per simulated second, average density error) among
 // the stable runs: a run is on it when no other stable run is at least as good in both

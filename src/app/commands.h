@@ -116,3 +116,46 @@ void set_threads(int threads);
 std::string number_override(const std::string& path, double value);
 
 }  // namespace sluice::app
+
+namespace sluice::app {
+
+// `sluice figures KIND INPUT...`: gnuplot figures from stats.csv / bench.csv / experiment
+// CSV files (analysis/figures.h), Markdown tables, and the standard figures of a run.
+struct FiguresOptions {
+  std::string kind;                  // series | box | scatter | table | run
+  std::vector<std::string> inputs;   // CSV files (run: run directories holding stats.csv)
+  std::string x = "time";
+  std::vector<std::string> y;
+  std::vector<std::string> labels;
+  std::string group;
+  std::vector<std::string> where;
+  std::string color;
+  std::string highlight;
+  bool mean = false, pareto = false, logx = false, logy = false;
+  std::string style = "lines";
+  std::string title, xlabel, ylabel;
+  std::string output;                // figure (png/svg/pdf) or table (.md); run: a directory
+  std::string size = "1200x800";
+  std::vector<std::string> columns;  // table: the columns to show (default all)
+  std::string format = "png";        // run: png, svg or pdf
+};
+int run_figures(const FiguresOptions& o);
+
+}  // namespace sluice::app
+
+namespace sluice::app {
+
+// `sluice experiment NAME...`: the thesis' chapter-5 experiments (app/experiment.cpp).
+struct ExperimentOptions {
+  std::vector<std::string> names;                   // experiment names, `all` or `list`
+  std::string output_dir = "renders/experiments";  // each experiment writes DIR/<name>/
+  bool quick = false;                               // small versions (tests, a first look)
+  std::string scenes = "scenes";                    // folder of the base scenes
+  std::string scene;                                // replaces the base scene (one experiment)
+  std::vector<std::string> set;                     // overrides applied after the experiment's
+  int threads = 0;
+};
+int run_experiment(const ExperimentOptions& o);
+std::vector<std::string> experiment_names();
+
+}  // namespace sluice::app

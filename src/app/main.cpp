@@ -200,6 +200,46 @@ int main(int argc, char** argv) {
   validatecmd->add_option("--threads", val.threads, "OpenMP threads")->check(threads);
   validatecmd->add_option("--set", val.set, "Override a scene value: path=value")->take_all();
 
+  FiguresOptions fig;
+  CLI::App* figcmd = app.add_subcommand(
+      "figures", "Figures from stats/bench/experiment CSV files with gnuplot: series, box, scatter, table, run");
+  figcmd->add_option("kind", fig.kind, "series (y over x), box (distributions), scatter (points, Pareto front), "
+                                       "table (Markdown), run (the standard figures of run directories)")
+      ->required()->check(CLI::IsMember({"series", "box", "scatter", "table", "run"}));
+  figcmd->add_option("inputs", fig.inputs, "CSV files (run: directories holding stats.csv)")->required();
+  figcmd->add_option("--x", fig.x, "Column on the x axis (default time)");
+  figcmd->add_option("--y", fig.y, "Column(s) to plot; each is its own series")->delimiter(',');
+  figcmd->add_option("--label", fig.labels, "Legend label per input (default: its directory's name)");
+  figcmd->add_option("--group", fig.group, "Split each input's rows into series by this column's value");
+  figcmd->add_option("--where", fig.where, "Keep only rows with COLUMN=VALUE (repeatable)");
+  figcmd->add_option("--color", fig.color, "scatter: colour the points by this column");
+  figcmd->add_flag("--mean", fig.mean, "series: add a dashed line at each series' mean");
+  figcmd->add_flag("--pareto", fig.pareto, "scatter: draw the Pareto front (smaller x and y are better)");
+  figcmd->add_option("--highlight", fig.highlight, "scatter: ring the rows with COLUMN=VALUE in red (e.g. best=1)");
+  figcmd->add_flag("--logx", fig.logx, "Logarithmic x axis");
+  figcmd->add_flag("--logy", fig.logy, "Logarithmic y axis");
+  figcmd->add_option("--style", fig.style, "series: lines, linespoints or points")
+      ->check(CLI::IsMember({"lines", "linespoints", "points"}));
+  figcmd->add_option("--title", fig.title, "Figure title (default none: papers put it in the caption)");
+  figcmd->add_option("--xlabel", fig.xlabel, "x axis label (default: the column with its unit)");
+  figcmd->add_option("--ylabel", fig.ylabel, "y axis label (default: the column with its unit)");
+  figcmd->add_option("-o,--output", fig.output,
+                     "Figure file; .png, .svg or .pdf picks the format (table: a .md file, default stdout; "
+                     "run: a directory, default RUN/figures)");
+  figcmd->add_option("--size", fig.size, "Figure size WxH in pixels (default 1200x800; PDF: 6x4 in)");
+  figcmd->add_option("--columns", fig.columns, "table: the columns to show (default all)")->delimiter(',');
+  figcmd->add_option("--format", fig.format, "run: png, svg or pdf")->check(CLI::IsMember({"png", "svg", "pdf"}));
+
+  ExperimentOptions exp;
+  CLI::App* expcmd = app.add_subcommand("experiment", "The thesis' chapter-5 experiments: CSV, figures and summary.md each");
+  expcmd->add_option("names", exp.names, "Experiment names, `all`, or `list` (default: list them)");
+  expcmd->add_option("-o,--output", exp.output_dir, "Output directory; each experiment writes DIR/<name>/ (default renders/experiments)");
+  expcmd->add_flag("--quick", exp.quick, "Small versions: coarse particles, short runs (tests, a first look)");
+  expcmd->add_option("--scenes", exp.scenes, "Folder holding the base scenes (default scenes)");
+  expcmd->add_option("--scene", exp.scene, "Replace the experiment's base scene (one experiment at a time)");
+  expcmd->add_option("--set", exp.set, "Override a scene value: path=value (after the experiment's own)")->take_all();
+  expcmd->add_option("--threads", exp.threads, "OpenMP threads (parallel compares 1 and 2 regardless)")->check(threads);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -215,6 +255,8 @@ int main(int argc, char** argv) {
     if (*benchrender) return run_bench_render(brender);
     if (*suitecmd) return run_suite(suite);
     if (*validatecmd) return run_validate(val);
+    if (*figcmd) return run_figures(fig);
+    if (*expcmd) return run_experiment(exp);
   } catch (const sluice::SceneError& e) {
     std::fprintf(stderr, "sluice: scene error: %s\n", e.what());
     return 2;

@@ -1,0 +1,727 @@
+// `sluice experiment NAME`: the experiments of the thesis' chapter 5, one command each.
+// Every experiment writes its numbers as CSV, its figures through `sluice figures`
+// (analysis/figures.h) and a summary.md that says what to compare with which thesis
+// figure or table. Runs are fresh in-process simulations (analysis::run_sweep_point), so
+// a result does not depend on the order of the runs.
+//
+// Units: the thesis' experiments use their own scale (time steps of 0.05 s); sluice's
+// scenes are in metres with h = 0.01 m, so the swept values are the equivalents here
+// (the stable range of dt, the column of 5000 particles), not the thesis' numbers.
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+
+#include "analysis/csv.h"
+#include "analysis/figures.h"
+#include "analysis/sweep.h"
+#include "app/commands.h"
+#include "app/run.h"
+#include "io/output.h"
+#include "scene/scene.h"
+#include "sim/simulation.h"
+
+namespace sluice::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+using analysis::FigureKind;
+using analysis::FigureSpec;
+using analysis::SweepRun;
+
+std::string fmt(double v, int digits = 9) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+// A CSV file built row by row.
+class Csv {
+ public:
+  explicit Csv(std::string header) : text_(std::move(header) + "\n") {}
+  void row(const std::vector<std::string>& fields) { text_ += analysis::join(fields, ",") + "\n"; }
+  void write(const fs::path& path) const { write_file_atomic(path.string(), text_); }
+
+ private:
+  std::string text_;
+};
+
+// 1-minute load average: timing experiments record it, since timings taken while other
+// work shares the cores are not speed figures.
+double load_average() {
+  std::ifstream in("/proc/loadavg");
+  double l = -1;
+  in >> l;
+  return l;
+}
+
+struct Context {
+  fs::path dir;                   // <output>/<experiment>
+  fs::path root;                  // <output>
+  bool quick = false;             // the small version (tests, a first look)
+  std::string scenes = "scenes";  // where the base scenes are
+  std::string scene;              // --scene: replaces the experiment's base scene
+  std::vector<std::string> set;   // --set: applied after the experiment's own overrides
+  std::string md;                 // summary.md
+
+  std::string scene_path(const std::string& base) const { return scene.empty() ? scenes + "/" + base : scene; }
+  // The quick versions coarsen the base scenes first (an experiment's own spacing wins).
+  Scene load(const std::string& base, std::vector<std::string> own) const {
+    if (quick && scene.empty() && base == "column.json") own.insert(own.begin(), "spacing=0.02");
+    if (quick && scene.empty() && base == "dam_break.json") own.insert(own.begin(), "spacing=0.04");
+    own.insert(own.end(), set.begin(), set.end());
+    return load_scene(scene_path(base), own);
+  }
+  void figure(FigureSpec spec, const std::string& caption) {
+    spec.output = (dir / spec.output).string();
+    const std::string why = analysis::make_figure(spec);
+    const std::string name = fs::path(spec.output).filename().string();
+    if (why.empty()) {
+      md += "![" + caption + "](" + name + ")\n\n*" + caption + "*\n\n";
+      std::printf("  wrote %s\n", spec.output.c_str());
+    } else {
+      md += "(no figure " + name + ": " + why + ")\n\n";
+      std::fprintf(stderr, "sluice: warning: no figure %s: %s\n", spec.output.c_str(), why.c_str());
+    }
+  }
+  void table(const fs::path& csv, const std::vector<std::string>& columns) {
+    md += analysis::markdown_table(analysis::read_csv_table(csv.string()), columns) + "\n";
+  }
+};
+
+FigureSpec spec(FigureKind kind, const fs::path& csv, const std::string& x, std::vector<std::string> y,
+                const std::string& output) {
+  FigureSpec s;
+  s.kind = kind;
+  s.inputs = {csv.string()};
+  s.x = x;
+  s.y = std::move(y);
+  s.output = output;
+  return s;
+}
+
+void print_run(const std::string& what, const SweepRun& r) {
+  std::printf("  %-42s %-5s %8ld steps %8.2f iters %9.4f %% err %9.3f s/sim-s%s\n", what.c_str(), r.solver.c_str(), r.steps,
+              r.avg_iterations, r.avg_density_error, r.seconds_per_simulated_second(), r.stable ? "" : "  UNSTABLE");
+  std::fflush(stdout);
+}
+
+std::string override_number(const std::string& key, double v) { return key + "=" + fmt(v, 17); }
+
+// The column scene of a given fluid height [m] (the tank 0.2 m higher).
+std::vector<std::string> column_height(double width, double height) {
+  return {"fluid.0.max=[" + fmt(width, 17) + "," + fmt(height, 17) + "]",
+          "boundaries.0.max=[" + fmt(width, 17) + "," + fmt(height + 0.2, 17) + "]"};
+}
+
+// --- Figure 3: iterations and compression error over time (breaking dam) ------------------
+
+void dam_break_iterations(Context& c) {
+  std::vector<std::string> own;
+  if (c.quick) own = {"time.duration=0.5"};
+  const Scene scene = c.load("dam_break.json", own);
+  StatsCsv stats((c.dir / "stats.csv").string());
+  long max_iterations = 0;
+  const SweepRun r = analysis::run_sweep_point(scene, {}, [&](const StepStats& st) {
+    stats.write(st);
+    max_iterations = std::max<long>(max_iterations, st.iterations);
+  });
+  stats.finish();
+  print_run(scene.name, r);
+  c.md += "Scene `" + c.scene_path("dam_break.json") + "`: " + std::to_string(r.particles) + " particles, " +
+          std::to_string(r.steps) + " steps to t = " + fmt(r.simulated, 4) + " s" + (r.stable ? "" : " (UNSTABLE: " + r.message + ")") +
+          ". Average iterations " + fmt(r.avg_iterations, 4) + " (largest " + std::to_string(max_iterations) +
+          "), average density error " + fmt(r.avg_density_error, 3) + " %.\n\n";
+  FigureSpec a = spec(FigureKind::Series, c.dir / "stats.csv", "time", {"iterations"}, "iterations.png");
+  a.mean = true;
+  c.figure(a, "Solver iterations per step over time, with their mean (thesis Figure 3, left)");
+  FigureSpec b = spec(FigureKind::Series, c.dir / "stats.csv", "time", {"avg_error_percent"}, "compression_error.png");
+  b.mean = true;
+  c.figure(b, "Predicted average compression error (Eq. 23) at the solver's exit over time (thesis Figure 3, right)");
+}
+
+// --- Figure 6a and Table 2: IISPH against the time step --------------------------------------
+
+void iisph_dt(Context& c) {
+  const std::vector<double> dts = c.quick ? std::vector<double>{1e-3, 2e-3}
+                                          : std::vector<double>{2.5e-4, 5e-4, 7.5e-4, 1e-3, 1.5e-3, 2e-3};
+  // 100 frames at 30 fps, as the thesis' Table 2.
+  const double duration = c.quick ? 0.1 : 100.0 / 30.0;
+  Csv csv("dt,stable,particles,steps,avg_iterations,avg_density_error_percent,max_density_error_percent,pressure_s,"
+          "neighbors_s,overall_s,s_per_simulated_s,best");
+  std::vector<SweepRun> runs;
+  for (double dt : dts) {
+    const Scene scene = c.load("column.json", {override_number("time.dt", dt), override_number("time.duration", duration),
+                                               "solver.type=iisph"});
+    runs.push_back(analysis::run_sweep_point(scene, {}));
+    print_run("dt = " + fmt(dt), runs.back());
+  }
+  std::size_t best = runs.size();
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    if (runs[i].stable && (best == runs.size() || runs[i].ms_phase[4] * runs[i].steps < runs[best].ms_phase[4] * runs[best].steps))
+      best = i;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const SweepRun& r = runs[i];
+    const double n = static_cast<double>(r.steps) / 1000.0;
+    csv.row({fmt(dts[i]), r.stable ? "1" : "0", std::to_string(r.particles), std::to_string(r.steps), fmt(r.avg_iterations, 4),
+             fmt(r.avg_density_error, 4), fmt(r.max_density_error, 4), fmt(r.ms_phase[2] * n, 4), fmt(r.ms_phase[0] * n, 4),
+             fmt(r.ms_phase[4] * n, 4), fmt(r.seconds_per_simulated_second(), 4), i == best ? "1" : "0"});
+  }
+  csv.write(c.dir / "iisph_dt.csv");
+  c.md += "The 5000-particle column (`" + c.scene_path("column.json") + "`), " + fmt(duration, 4) +
+          " simulated seconds per run, tolerance 0.1 %. Times are the solver's wall time in seconds (pressure = the "
+          "relaxed Jacobi solve, neighbors = the neighbour search, overall = the whole steps); load average at the end " +
+          fmt(load_average(), 3) + ". Compare with the thesis' Table 2 and Figure 6a: iterations grow with dt, the "
+          "overall time has a minimum where fewer steps stop paying for more iterations.\n\n";
+  c.table(c.dir / "iisph_dt.csv", {"dt", "stable", "steps", "avg_iterations", "avg_density_error_percent", "pressure_s",
+                                   "neighbors_s", "overall_s", "best"});
+  if (best < runs.size()) c.md += "Fastest overall: dt = " + fmt(dts[best]) + " s (`best` = 1).\n\n";
+  FigureSpec a = spec(FigureKind::Series, c.dir / "iisph_dt.csv", "dt", {"avg_iterations"}, "iterations_vs_dt.png");
+  a.style = "linespoints";
+  a.where = {"stable=1"};
+  c.figure(a, "Average solver iterations against the time step (thesis Figure 6a)");
+  FigureSpec b = spec(FigureKind::Series, c.dir / "iisph_dt.csv", "dt", {"pressure_s", "neighbors_s", "overall_s"},
+                      "times_vs_dt.png");
+  b.style = "linespoints";
+  b.where = {"stable=1"};
+  b.ylabel = "wall time for the run [s]";
+  c.figure(b, "Pressure solve, neighbour search and overall time against the time step (thesis Table 2)");
+}
+
+// --- Figure 6b: IISPH against the column height -------------------------------------------------
+
+void column_height_experiment(Context& c) {
+  const std::vector<double> heights = c.quick ? std::vector<double>{0.25, 0.5} : std::vector<double>{0.25, 0.5, 1, 1.5, 2};
+  const double duration = c.quick ? 0.1 : 1.0;
+  Csv csv("height,particles,stable,steps,avg_iterations,avg_density_error_percent,s_per_simulated_s");
+  for (double h : heights) {
+    auto own = column_height(0.5, h);
+    own.push_back("time.dt=1e-3");
+    own.push_back(override_number("time.duration", duration));
+    const Scene scene = c.load("column.json", own);
+    const SweepRun r = analysis::run_sweep_point(scene, {});
+    print_run("height = " + fmt(h) + " m", r);
+    csv.row({fmt(h), std::to_string(r.particles), r.stable ? "1" : "0", std::to_string(r.steps), fmt(r.avg_iterations, 4),
+             fmt(r.avg_density_error, 4), fmt(r.seconds_per_simulated_second(), 4)});
+  }
+  csv.write(c.dir / "column_height.csv");
+  c.md += "Columns 0.5 m wide of growing height, dt = 1 ms, " + fmt(duration, 3) +
+          " s each, tolerance 0.1 %. Compare with the thesis' Figure 6b: deeper columns need more iterations.\n\n";
+  c.table(c.dir / "column_height.csv", {});
+  FigureSpec a = spec(FigureKind::Series, c.dir / "column_height.csv", "height", {"avg_iterations"}, "iterations_vs_height.png");
+  a.style = "linespoints";
+  a.where = {"stable=1"};
+  c.figure(a, "Average solver iterations against the column height at dt = 1 ms (thesis Figure 6b)");
+}
+
+// --- Figure 7: compression error against a fixed number of iterations ----------------------------
+
+void fixed_iterations(Context& c) {
+  const std::vector<int> counts = c.quick ? std::vector<int>{2, 8} : std::vector<int>{1, 2, 3, 4, 6, 8, 12, 16, 24, 32};
+  const double duration = c.quick ? 0.1 : 0.5;
+  Csv csv("iterations,stable,steps,avg_density_error_percent,max_density_error_percent,avg_predicted_error_percent,message");
+  for (int n : counts) {
+    const Scene scene = c.load("column.json", {"time.dt=1e-3", override_number("time.duration", duration),
+                                               "solver.min_iterations=" + std::to_string(n),
+                                               "solver.max_iterations=" + std::to_string(n)});
+    double predicted = 0;
+    const SweepRun r = analysis::run_sweep_point(scene, {}, [&](const StepStats& st) { predicted += st.avg_error_percent; });
+    print_run(std::to_string(n) + " iterations", r);
+    csv.row({std::to_string(n), r.stable ? "1" : "0", std::to_string(r.steps), fmt(r.avg_density_error, 4),
+             fmt(r.max_density_error, 4), fmt(r.steps > 0 ? predicted / static_cast<double>(r.steps) : 0, 4),
+             analysis::csv_quote(r.message)});
+  }
+  csv.write(c.dir / "fixed_iterations.csv");
+  c.md += "The column with exactly N relaxed Jacobi iterations per step (min = max = N), dt = 1 ms, " + fmt(duration, 3) +
+          " s each. The density error is Eq. 15's at each step's start; the predicted error is Eq. 23's at the solver's "
+          "exit. Compare with the thesis' Figure 7: the error falls as the iterations grow.\n\n";
+  c.table(c.dir / "fixed_iterations.csv", {"iterations", "stable", "avg_density_error_percent", "max_density_error_percent",
+                                          "avg_predicted_error_percent"});
+  FigureSpec a = spec(FigureKind::Series, c.dir / "fixed_iterations.csv", "iterations",
+                      {"avg_density_error_percent", "avg_predicted_error_percent"}, "error_vs_iterations.png");
+  a.style = "linespoints";
+  a.logy = true;
+  a.where = {"stable=1"};
+  a.xlabel = "solver iterations per step (fixed)";
+  a.ylabel = "average compression error [%]";
+  c.figure(a, "Compression error against a fixed number of Jacobi iterations (thesis Figure 7)");
+}
+
+// --- Figures 9 and 10: boundary methods -----------------------------------------------------------
+
+const char* const kMethods[] = {"extrapolation", "mirroring", "zero"};
+
+// The scene of the boundary experiments: the breaking dam at h = 0.02 (5000 particles).
+std::vector<std::string> boundary_scene(const Context& c, double duration) {
+  return {c.quick ? "spacing=0.05" : "spacing=0.02", override_number("time.duration", c.quick ? 0.2 : duration)};
+}
+
+// Point i of the Halton sequence in base b (deterministic, evenly spread samples).
+double halton(int i, int b) {
+  double f = 1, r = 0;
+  for (int n = i; n > 0; n /= b) {
+    f /= b;
+    r += f * (n % b);
+  }
+  return r;
+}
+
+void boundary_gamma(Context& c) {
+  const int samples = c.quick ? 2 : 8;
+  Csv csv("method,gamma1,gamma2,gamma3,stable,avg_iterations,avg_density_error_percent,s_per_simulated_s,best");
+  Csv best_csv("method,gamma1,gamma2,gamma3,avg_iterations,avg_density_error_percent");
+  c.md += "For each boundary method, the scene's gammas (0.84, 1, 1) and " + std::to_string(samples) +
+          " Halton samples of gamma1 in [0.7, 1.1], gamma2 in [0.7, 1.3], gamma3 in [0.7, 1.5] on the breaking dam "
+          "at h = " + std::string(c.quick ? "0.05" : "0.02") + ". The best sample has the fewest average iterations among the stable runs whose average density "
+          "error stays within 0.2 % (twice the tolerance: a gamma that lets the fluid compress or leak does not count). "
+          "Compare with the thesis' Figure 9 (a local optimum of a random search, like this one).\n\n| method | gamma1 | gamma2 | gamma3 | avg iterations | avg density error % |\n|---|---|---|---|---|---|\n";
+  for (const char* method : kMethods) {
+    struct Sample {
+      double g[3];
+      SweepRun r;
+    };
+    std::vector<Sample> runs;
+    for (int i = 0; i <= samples; ++i) {
+      Sample s{{0.84, 1.0, 1.0}, {}};
+      if (i > 0) s = {{0.7 + 0.4 * halton(i, 2), 0.7 + 0.6 * halton(i, 3), 0.7 + 0.8 * halton(i, 5)}, {}};
+      auto own = boundary_scene(c, 1.0);
+      own.push_back(std::string("solver.boundary_pressure=") + method);
+      for (int k = 0; k < 3; ++k) own.push_back(override_number("solver.gamma" + std::to_string(k + 1), s.g[k]));
+      s.r = analysis::run_sweep_point(c.load("dam_break.json", own), {});
+      print_run(std::string(method) + " g=" + fmt(s.g[0], 3) + "," + fmt(s.g[1], 3) + "," + fmt(s.g[2], 3), s.r);
+      runs.push_back(s);
+    }
+    std::size_t best = runs.size();
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      const SweepRun& r = runs[i].r;
+      if (r.stable && r.avg_density_error <= 0.2 && (best == runs.size() || r.avg_iterations < runs[best].r.avg_iterations)) best = i;
+    }
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      const SweepRun& r = runs[i].r;
+      csv.row({method, fmt(runs[i].g[0], 4), fmt(runs[i].g[1], 4), fmt(runs[i].g[2], 4), r.stable ? "1" : "0",
+               fmt(r.avg_iterations, 4), fmt(r.avg_density_error, 4), fmt(r.seconds_per_simulated_second(), 4),
+               i == best ? "1" : "0"});
+    }
+    if (best < runs.size()) {
+      const Sample& b = runs[best];
+      best_csv.row({method, fmt(b.g[0], 4), fmt(b.g[1], 4), fmt(b.g[2], 4), fmt(b.r.avg_iterations, 4), fmt(b.r.avg_density_error, 4)});
+      c.md += std::string("| ") + method + " | " + fmt(b.g[0], 3) + " | " + fmt(b.g[1], 3) + " | " + fmt(b.g[2], 3) + " | " +
+              fmt(b.r.avg_iterations, 4) + " | " + fmt(b.r.avg_density_error, 3) + " |\n";
+    } else {
+      c.md += std::string("| ") + method + " | no sample qualified | | | | |\n";
+    }
+  }
+  c.md += "\n";
+  csv.write(c.dir / "gamma_search.csv");
+  best_csv.write(c.dir / "best.csv");
+  for (const char* method : kMethods) {
+    FigureSpec a = spec(FigureKind::Scatter, c.dir / "gamma_search.csv", "gamma1", {"gamma3"},
+                        std::string("gamma_") + method + ".png");
+    a.color = "avg_iterations";
+    a.highlight = "best=1";
+    a.where = {std::string("method=") + method, "stable=1"};
+    a.labels = {std::string("pressure ") + method};
+    c.figure(a, std::string("gamma1 against gamma3 for ") + method + ", coloured by average iterations, best ringed (thesis Figure 9)");
+  }
+}
+
+void boundary_iterations(Context& c) {
+  // The gammas of boundary-gamma when it ran into the same output directory.
+  std::map<std::string, std::vector<std::string>> gammas;
+  const fs::path best = c.root / "boundary-gamma" / "best.csv";
+  if (fs::exists(best)) {
+    const auto t = analysis::read_csv_table(best.string());
+    for (const auto& row : t.rows)
+      gammas[row[static_cast<std::size_t>(t.column("method"))]] = {
+          "solver.gamma1=" + row[static_cast<std::size_t>(t.column("gamma1"))],
+          "solver.gamma2=" + row[static_cast<std::size_t>(t.column("gamma2"))],
+          "solver.gamma3=" + row[static_cast<std::size_t>(t.column("gamma3"))]};
+  }
+  Csv steps("method,time,iterations,density_error_percent");
+  Csv means("method,gammas,stable,steps,avg_iterations,avg_density_error_percent");
+  for (const char* method : kMethods) {
+    auto own = boundary_scene(c, 2.0);
+    own.push_back(std::string("solver.boundary_pressure=") + method);
+    const auto g = gammas.find(method);
+    if (g != gammas.end()) own.insert(own.end(), g->second.begin(), g->second.end());
+    const SweepRun r = analysis::run_sweep_point(c.load("dam_break.json", own), {}, [&](const StepStats& st) {
+      steps.row({method, fmt(st.time), std::to_string(st.iterations), fmt(st.density_error_percent, 5)});
+    });
+    print_run(method, r);
+    means.row({method, g == gammas.end() ? "scene" : analysis::csv_quote(analysis::join(g->second, " ")), r.stable ? "1" : "0",
+               std::to_string(r.steps), fmt(r.avg_iterations, 4), fmt(r.avg_density_error, 4)});
+  }
+  steps.write(c.dir / "iterations.csv");
+  means.write(c.dir / "means.csv");
+  c.md += std::string("The breaking dam at h = 0.02 with each boundary method, ") +
+          (gammas.empty() ? "with the scene's gammas (run boundary-gamma first into the same output directory to use "
+                            "its best ones)"
+                          : "with boundary-gamma's best gammas") +
+          ". Compare with the thesis' Figure 10 (extrapolation 20.5, mirroring 21.2, zero pressure 21.4 iterations on "
+          "average).\n\n";
+  c.table(c.dir / "means.csv", {});
+  FigureSpec a = spec(FigureKind::Box, c.dir / "iterations.csv", "", {"iterations"}, "iterations_by_method.png");
+  a.group = "method";
+  c.figure(a, "Distribution of the solver iterations per step for each boundary method; the dot is the mean (thesis Figure 10)");
+}
+
+// --- Table 3 and Figure 12: WCSPH ---------------------------------------------------------------
+
+void wcsph(Context& c) {
+  const std::vector<double> ks = c.quick ? std::vector<double>{1e5, 1e6} : std::vector<double>{1e5, 3e5, 1e6, 3e6, 1e7};
+  const double duration = c.quick ? 0.05 : 1.0;
+  Csv series("stiffness,time,density_error_percent");
+  Csv by_k("stiffness,stable,steps,avg_density_error_percent,max_density_error_percent,s_per_simulated_s,message");
+  for (double k : ks) {
+    const Scene scene = c.load("column.json", {"solver.type=wcsph", override_number("solver.stiffness", k), "time.dt=1e-4",
+                                               override_number("time.duration", duration)});
+    long n = 0;
+    const SweepRun r = analysis::run_sweep_point(scene, {}, [&](const StepStats& st) {
+      if (n++ % 10 == 0) series.row({fmt(k), fmt(st.time), fmt(st.density_error_percent, 5)});  // every 10th step
+    });
+    print_run("k = " + fmt(k), r);
+    by_k.row({fmt(k), r.stable ? "1" : "0", std::to_string(r.steps), fmt(r.avg_density_error, 4), fmt(r.max_density_error, 4),
+              fmt(r.seconds_per_simulated_second(), 4), analysis::csv_quote(r.message)});
+  }
+  series.write(c.dir / "error_over_time.csv");
+  by_k.write(c.dir / "stiffness.csv");
+
+  const std::vector<double> dts = c.quick ? std::vector<double>{1e-4, 2e-4} : std::vector<double>{2.5e-5, 5e-5, 1e-4, 2e-4, 4e-4};
+  const double k = 1e6;
+  Csv by_dt("dt,stable,steps,avg_density_error_percent,pressure_s,neighbors_s,overall_s,s_per_simulated_s,message");
+  for (double dt : dts) {
+    const Scene scene = c.load("column.json", {"solver.type=wcsph", override_number("solver.stiffness", k),
+                                               override_number("time.dt", dt), override_number("time.duration", duration)});
+    const SweepRun r = analysis::run_sweep_point(scene, {});
+    print_run("k = 1e6, dt = " + fmt(dt), r);
+    const double n = static_cast<double>(r.steps) / 1000.0;
+    by_dt.row({fmt(dt), r.stable ? "1" : "0", std::to_string(r.steps), fmt(r.avg_density_error, 4), fmt(r.ms_phase[2] * n, 4),
+               fmt(r.ms_phase[0] * n, 4), fmt(r.ms_phase[4] * n, 4), fmt(r.seconds_per_simulated_second(), 4),
+               analysis::csv_quote(r.message)});
+  }
+  by_dt.write(c.dir / "time_step.csv");
+  c.md += "WCSPH on the 5000-particle column, " + fmt(duration, 3) +
+          " simulated seconds per run (the thesis' Table 3 uses 100 frames). First the stiffness k at dt = 0.1 ms "
+          "(thesis Figure 12: the error falls as k grows), then the time step at k = 1e6 (thesis Table 3: WCSPH's "
+          "pressure is cheap, its step is small; an unstable run is reported, not hidden). Load average at the end " +
+          fmt(load_average(), 3) + ".\n\n";
+  c.table(c.dir / "stiffness.csv", {"stiffness", "stable", "avg_density_error_percent", "max_density_error_percent", "s_per_simulated_s"});
+  c.table(c.dir / "time_step.csv", {"dt", "stable", "steps", "avg_density_error_percent", "pressure_s", "neighbors_s", "overall_s"});
+  FigureSpec a = spec(FigureKind::Series, c.dir / "error_over_time.csv", "time", {"density_error_percent"}, "error_over_time.png");
+  a.group = "stiffness";
+  a.mean = true;
+  a.logy = true;
+  c.figure(a, "WCSPH average density error over time for each stiffness k at dt = 0.1 ms (thesis Figure 12)");
+}
+
+// --- Section 5.5: IISPH or WCSPH, speed against error --------------------------------------------
+
+// Names where the combined Pareto front changes solver: below which error each one is the
+// faster choice.
+std::string crossover_text(std::vector<SweepRun> runs) {
+  analysis::mark_pareto_front(runs);
+  std::vector<const SweepRun*> front;
+  for (const auto& r : runs)
+    if (r.pareto) front.push_back(&r);
+  std::sort(front.begin(), front.end(), [](const SweepRun* a, const SweepRun* b) {
+    return a->seconds_per_simulated_second() < b->seconds_per_simulated_second();
+  });
+  if (front.empty()) return "No stable run: no front.";
+  std::string s = "Pareto front from fastest to most accurate: ";
+  for (std::size_t i = 0; i < front.size(); ++i)
+    s += (i ? ", " : "") + front[i]->solver + " (" + fmt(front[i]->seconds_per_simulated_second(), 3) + " s, " +
+         fmt(front[i]->avg_density_error, 3) + " %)";
+  s += ". ";
+  bool changed = false;
+  for (std::size_t i = 1; i < front.size(); ++i)
+    if (front[i]->solver != front[i - 1]->solver) {
+      changed = true;
+      s += "Crossover: for an average density error of " + fmt(front[i - 1]->avg_density_error, 3) + " % or more " +
+           front[i - 1]->solver + " is the faster choice; to reach " + fmt(front[i]->avg_density_error, 3) + " % " +
+           front[i]->solver + " is (" + fmt(front[i]->seconds_per_simulated_second(), 3) + " against " +
+           fmt(front[i - 1]->seconds_per_simulated_second(), 3) + " s per simulated second). ";
+    }
+  if (!changed) s += "No crossover: " + front[0]->solver + " is on the whole front (it is faster at every error reached). ";
+  return s;
+}
+
+void speed_error(Context& c) {
+  struct Case {
+    std::string label, base;
+    std::vector<std::string> own;
+  };
+  const double duration = c.quick ? 0.05 : 0.5;
+  std::vector<Case> cases = {{"dam_break_20k", "dam_break.json", {}}, {"column_1m", "column.json", {}},
+                             {"column_2m", "column.json", column_height(0.5, 2.0)}};
+  if (c.quick) cases = {{"dam_break", "dam_break.json", {}}};
+  const std::vector<std::vector<std::string>> iisph =
+      c.quick ? std::vector<std::vector<std::string>>{{"time.dt=1e-3", "solver.tolerance=0.1"}}
+              : analysis::sweep_combinations({analysis::parse_sweep("time.dt=5e-4,1e-3,2e-3"),
+                                              analysis::parse_sweep("solver.tolerance=0.01,0.1,1")});
+  const std::vector<std::vector<std::string>> wc =
+      c.quick ? std::vector<std::vector<std::string>>{{"solver.stiffness=1e6", "time.dt=1e-4"}}
+              : analysis::sweep_combinations({analysis::parse_sweep("solver.stiffness=1e5,1e6,1e7"),
+                                              analysis::parse_sweep("time.dt=5e-5,1e-4,2e-4")});
+  c.md += "Each scene runs " + fmt(duration, 3) +
+          " simulated seconds per combination: IISPH over dt x tolerance, WCSPH over stiffness x dt. Time is wall seconds "
+          "per simulated second (" + std::to_string(omp_get_max_threads()) + " threads), error is the average of Eq. 15's "
+          "density error over the steps. Load average at the start " + fmt(load_average(), 3) + ".\n\n";
+  for (const Case& k : cases) {
+    std::vector<SweepRun> runs;
+    for (const auto* grid : {&iisph, &wc})
+      for (const auto& combo : *grid) {
+        auto own = k.own;
+        own.push_back(override_number("time.duration", duration));
+        own.push_back(std::string("solver.type=") + (grid == &iisph ? "iisph" : "wcsph"));
+        own.insert(own.end(), combo.begin(), combo.end());
+        runs.push_back(analysis::run_sweep_point(c.load(k.base, own), combo));
+        runs.back().scene = k.label;
+        print_run(k.label + " " + analysis::join(combo, " "), runs.back());
+      }
+    analysis::mark_pareto_front(runs);
+    const fs::path csv = c.dir / (k.label + ".csv");
+    write_file_atomic(csv.string(), analysis::sweep_csv(runs));
+    c.md += "### " + k.label + " (" + std::to_string(runs.front().particles) + " particles)\n\n" +
+            analysis::sweep_markdown(runs) + "\n" + crossover_text(runs) + "\n\n";
+    FigureSpec a = spec(FigureKind::Scatter, csv, "s_per_simulated_s", {"avg_density_error_percent"}, k.label + ".png");
+    a.group = "solver";
+    a.where = {"stable=1"};
+    a.pareto = true;
+    a.logx = a.logy = true;
+    c.figure(a, k.label + ": time per simulated second against average density error, Pareto front dashed");
+  }
+}
+
+// --- Figure 11 and the 2-thread target: parallel speed-up ---------------------------------------
+
+int available_threads() { return std::max(1, omp_get_num_procs()); }
+
+// Median wall milliseconds per step of `repeat` runs of `scene` with `threads` threads.
+double median_ms_per_step(const Scene& scene, int threads, int repeat, SweepRun* last = nullptr) {
+  omp_set_num_threads(threads);
+  std::vector<double> ms;
+  for (int i = 0; i < repeat; ++i) {
+    const SweepRun r = analysis::run_sweep_point(scene, {});
+    ms.push_back(r.ms_phase[4]);
+    if (last) *last = r;
+  }
+  std::sort(ms.begin(), ms.end());
+  return ms[ms.size() / 2];
+}
+
+void parallel(Context& c) {
+  const int restore = omp_get_max_threads();
+  std::vector<int> threads = {1, 2};
+  if (available_threads() > 2) threads.push_back(available_threads());
+  const double start_load = load_average();
+  // Thesis Figure 11: columns of growing height, sequential against parallel.
+  const std::vector<double> heights = c.quick ? std::vector<double>{0.25} : std::vector<double>{0.25, 0.5, 1, 1.5, 2, 2.4};
+  Csv csv("particles,height,threads,avg_iterations,ms_per_step,s_per_simulated_s");
+  for (double h : heights) {
+    auto own = column_height(0.5, h);
+    own.push_back("time.dt=1e-3");
+    own.push_back(c.quick ? "time.duration=0.01" : "time.duration=0.1");
+    const Scene scene = c.load("column.json", own);
+    for (int t : threads) {
+      SweepRun r;
+      const double ms = median_ms_per_step(scene, t, c.quick ? 1 : 3, &r);
+      std::printf("  %6ld particles %d threads %8.3f ms/step %6.2f iters\n", r.particles, t, ms, r.avg_iterations);
+      csv.row({std::to_string(r.particles), fmt(h), std::to_string(t), fmt(r.avg_iterations, 4), fmt(ms, 5),
+               fmt(ms * static_cast<double>(r.steps) / 1000.0 / std::max(r.simulated, 1e-12), 5)});
+    }
+  }
+  csv.write(c.dir / "column_threads.csv");
+  // The target: 2-thread efficiency on the 130k breaking dam (median of 3 runs of 30 steps).
+  const Scene big = c.quick ? c.load("dam_break.json", {"time.duration=0.01", "time.dt=1e-3"})
+                            : load_scene(c.scenes + "/dam_break_130k.json", [&] {
+                                auto s = c.set;
+                                s.insert(s.begin(), {"time.dt=1e-3", "time.duration=0.03"});
+                                return s;
+                              }());
+  Csv eff("scene,particles,threads,ms_per_step,speedup,efficiency");
+  double one = 0;
+  std::string eff_text;
+  for (int t : threads) {
+    SweepRun r;
+    const double ms = median_ms_per_step(big, t, c.quick ? 1 : 3, &r);
+    if (t == 1) one = ms;
+    const double speedup = one / ms;
+    eff.row({big.name, std::to_string(r.particles), std::to_string(t), fmt(ms, 5), fmt(speedup, 4), fmt(speedup / t, 4)});
+    std::printf("  %s %ld particles, %d threads: %.2f ms/step, speed-up %.3f, efficiency %.1f %%\n", big.name.c_str(),
+                r.particles, t, ms, speedup, 100 * speedup / t);
+    if (t > 1)
+      eff_text += std::to_string(t) + " threads: speed-up " + fmt(speedup, 3) + "x, efficiency " + fmt(100 * speedup / t, 3) + " %. ";
+  }
+  eff.write(c.dir / "efficiency.csv");
+  omp_set_num_threads(restore);
+  c.md += "Median of 3 runs per point, " + std::to_string(available_threads()) + " cores, load average " + fmt(start_load, 3) +
+          " at the start and " + fmt(load_average(), 3) + " at the end (timings are only meaningful on an idle machine). "
+          "Compare with the thesis' Figure 11. Target: at least 1.8x (90 %) on 2 threads for the 130k breaking dam. " +
+          eff_text + "\n\n";
+  c.table(c.dir / "efficiency.csv", {});
+  c.table(c.dir / "column_threads.csv", {});
+  FigureSpec a = spec(FigureKind::Series, c.dir / "column_threads.csv", "particles", {"ms_per_step"}, "time_vs_particles.png");
+  a.group = "threads";
+  a.style = "linespoints";
+  a.ylabel = "wall time per step [ms]";
+  c.figure(a, "Wall time per step against particle count for 1 and 2 threads (thesis Figure 11, left; groups are thread counts)");
+  FigureSpec b = spec(FigureKind::Series, c.dir / "column_threads.csv", "particles", {"avg_iterations"}, "iterations_vs_particles.png");
+  b.group = "threads";
+  b.style = "linespoints";
+  c.figure(b, "Average iterations against particle count (thesis Figure 11, right: identical for every thread count)");
+}
+
+// --- O(n): time per particle-step from 10k to 1M particles ----------------------------------------
+
+void scaling(Context& c) {
+  // A layer 0.5 m deep (50 rows at h = 0.01) widened to the particle count: the work per
+  // particle (neighbours, iterations at rest) stays the same, so any growth of the time
+  // per particle-step is the implementation's, not the physics'.
+  const std::vector<long> counts = c.quick ? std::vector<long>{2000, 8000} : std::vector<long>{10000, 30000, 100000, 300000, 1000000};
+  const double start_load = load_average();
+  Csv csv("particles,width,steps,avg_iterations,ms_per_step,us_per_particle_step,ratio_to_first");
+  double first = 0, lo = HUGE_VAL, hi = 0;
+  for (long n : counts) {
+    const double width = static_cast<double>(n) / 50.0 * 0.01;
+    auto own = column_height(width, 0.5);
+    own.insert(own.end(), {"time.dt=5e-4", "time.duration=0.01"});
+    const Scene scene = c.load("column.json", own);
+    SweepRun r;
+    const double ms = median_ms_per_step(scene, omp_get_max_threads(), c.quick ? 1 : 3, &r);
+    const double us = 1000.0 * ms / static_cast<double>(r.particles);
+    if (first == 0) first = us;
+    lo = std::min(lo, us), hi = std::max(hi, us);
+    std::printf("  %8ld particles: %.3f ms/step, %.4f us per particle-step, %.2f iterations\n", r.particles, ms, us, r.avg_iterations);
+    csv.row({std::to_string(r.particles), fmt(width, 5), std::to_string(r.steps), fmt(r.avg_iterations, 4), fmt(ms, 5),
+             fmt(us, 5), fmt(us / first, 4)});
+  }
+  csv.write(c.dir / "scaling.csv");
+  c.md += "A layer 0.5 m deep widened from " + std::to_string(counts.front()) + " to " + std::to_string(counts.back()) +
+          " particles, 20 steps of 0.5 ms, median of 3, " + std::to_string(omp_get_max_threads()) + " threads, load average " +
+          fmt(start_load, 3) + " at the start. Target: the time per particle-step within 25 % over the range (O(n)). "
+          "Measured: largest / smallest = " + fmt(hi / lo, 3) + ".\n\n";
+  c.table(c.dir / "scaling.csv", {});
+  FigureSpec a = spec(FigureKind::Series, c.dir / "scaling.csv", "particles", {"us_per_particle_step"}, "scaling.png");
+  a.style = "linespoints";
+  a.logx = true;
+  c.figure(a, "Wall time per particle-step against particle count (flat = O(n))");
+}
+
+// --- Figure 14: naive against hashed neighbour search ----------------------------------------------
+
+void neighbour_search(Context& c) {
+  const std::vector<long> counts = c.quick ? std::vector<long>{200, 400} : std::vector<long>{500, 1000, 2000, 4000, 8000, 12000};
+  const double start_load = load_average();
+  Csv csv("particles,method,ms_neighbors");
+  for (long n : counts) {
+    // 50 particles per row at h = 0.01 in a 0.5 m wide column.
+    auto own = column_height(0.5, static_cast<double>(n) / 50.0 * 0.01);
+    own.insert(own.end(), {"time.dt=5e-4", "time.duration=0.0025"});
+    const Scene scene = c.load("column.json", own);
+    for (bool brute : {true, false}) {
+      const SweepRun r = analysis::run_sweep_point(scene, {}, {}, brute);
+      std::printf("  %6ld particles %-8s %9.3f ms per neighbour search\n", r.particles, brute ? "naive" : "hashing", r.ms_phase[0]);
+      csv.row({std::to_string(r.particles), brute ? "naive" : "hashing", fmt(r.ms_phase[0], 5)});
+    }
+  }
+  csv.write(c.dir / "neighbour_search.csv");
+  c.md += "Columns of growing height, 5 steps each, the neighbour phase's mean wall time per step (fluid-fluid, "
+          "fluid-boundary and boundary-fluid lists). Load average " + fmt(start_load, 3) +
+          " at the start. Compare with the thesis' Figure 14: the naive search grows quadratically, hashing linearly.\n\n";
+  c.table(c.dir / "neighbour_search.csv", {});
+  FigureSpec a = spec(FigureKind::Series, c.dir / "neighbour_search.csv", "particles", {"ms_neighbors"}, "neighbour_search.png");
+  a.group = "method";
+  a.style = "linespoints";
+  c.figure(a, "Neighbour search time per step against particle count, naive O(n^2) against spatial hashing (thesis Figure 14)");
+}
+
+struct Experiment {
+  const char* name;
+  const char* thesis;
+  const char* what;
+  std::function<void(Context&)> run;
+};
+
+const std::vector<Experiment>& experiments() {
+  static const std::vector<Experiment> list = {
+      {"dam-break-iterations", "Figure 3", "solver iterations and compression error over time, breaking dam", dam_break_iterations},
+      {"iisph-dt", "Figure 6a, Table 2", "IISPH iterations and pressure/neighbour/overall time against dt, column", iisph_dt},
+      {"column-height", "Figure 6b", "IISPH iterations against column height at fixed dt", column_height_experiment},
+      {"fixed-iterations", "Figure 7", "compression error against a fixed number of Jacobi iterations", fixed_iterations},
+      {"boundary-gamma", "Figure 9", "gamma1-3 search for each boundary method, best values", boundary_gamma},
+      {"boundary-iterations", "Figure 10", "iteration distributions per boundary method", boundary_iterations},
+      {"wcsph", "Table 3, Figure 12", "WCSPH error against stiffness, time against dt", wcsph},
+      {"speed-error", "Section 5.5", "IISPH against WCSPH: time against error, Pareto front and crossover", speed_error},
+      {"parallel", "Figure 11", "1 against 2 threads: column sizes and the 130k breaking dam's efficiency", parallel},
+      {"scaling", "(O(n) target)", "time per particle-step from 10k to 1M particles", scaling},
+      {"neighbour-search", "Figure 14", "naive against spatial-hashing neighbour search", neighbour_search},
+  };
+  return list;
+}
+
+}  // namespace
+
+std::vector<std::string> experiment_names() {
+  std::vector<std::string> names;
+  for (const auto& e : experiments()) names.push_back(e.name);
+  return names;
+}
+
+int run_experiment(const ExperimentOptions& o) {
+  if (o.names.empty() || (o.names.size() == 1 && o.names[0] == "list")) {
+    std::printf("%-22s %-20s %s\n", "experiment", "thesis", "what");
+    for (const auto& e : experiments()) std::printf("%-22s %-20s %s\n", e.name, e.thesis, e.what);
+    return 0;
+  }
+  std::vector<const Experiment*> chosen;
+  for (const auto& n : o.names) {
+    if (n == "all") {
+      for (const auto& e : experiments()) chosen.push_back(&e);
+      continue;
+    }
+    const auto it = std::find_if(experiments().begin(), experiments().end(), [&](const Experiment& e) { return n == e.name; });
+    if (it == experiments().end())
+      throw view::FlagError("name", n, "one of: " + analysis::join(experiment_names(), ", ") + ", all, list");
+    chosen.push_back(&*it);
+  }
+  if (!o.scene.empty() && chosen.size() > 1)
+    throw view::FlagError("--scene", o.scene, "one experiment at a time (each has its own base scene)");
+  set_threads(o.threads);
+  const fs::path root(o.output_dir);
+  std::string index = "# sluice: the experiments of the thesis' chapter 5\n\nWritten by `sluice experiment" +
+                      std::string(o.quick ? " --quick" : "") + "`. Each section's figures and CSV files are in its folder.\n\n";
+  for (const Experiment* e : chosen) {
+    Context c;
+    c.root = root;
+    c.dir = root / e->name;
+    c.quick = o.quick;
+    c.scenes = o.scenes;
+    c.scene = o.scene;
+    c.set = o.set;
+    make_directory(c.dir);
+    std::printf("%s (%s): %s\n", e->name, e->thesis, e->what);
+    c.md = "## " + std::string(e->name) + " (thesis " + e->thesis + ")\n\n" + e->what + ". Command: `sluice experiment " +
+           e->name + (o.quick ? " --quick" : "") + "`.\n\n";
+    e->run(c);
+    write_file_atomic((c.dir / "summary.md").string(), c.md);
+    std::printf("  wrote %s\n", (c.dir / "summary.md").string().c_str());
+    // The index links the figures from the root folder.
+    std::string linked = c.md;
+    for (std::size_t p = 0; (p = linked.find("](", p)) != std::string::npos; p += 2)
+      linked.insert(p + 2, std::string(e->name) + "/");
+    index += linked;
+  }
+  if (chosen.size() > 1) {
+    write_file_atomic((root / "README.md").string(), index);
+    std::printf("wrote %s\n", (root / "README.md").string().c_str());
+  }
+  return 0;
+}
+
+}  // namespace sluice::app
