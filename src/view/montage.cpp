@@ -21,8 +21,9 @@ constexpr int kTickLabelChars = 7;  // tick_label() is at most this long
 std::string size_text(const Image& img) { return std::to_string(img.width) + "x" + std::to_string(img.height); }
 
 // The font grows with the cells, as the renderer's does with the frame, so labels stay
-// readable at any cell size: 1 up to 269 pixels high, 2 at 270 (480x270 cells), at most 4.
-int font_scale(int cell_h) { return std::clamp(cell_h / 135, 1, 4); }
+// readable at any cell size: 2 for 480x270 cells, at most 4. Narrow cells keep it small
+// enough for a label like "boundary_pressure = extrapolation" (33 characters) to fit.
+int font_scale(int cell_w, int cell_h) { return std::clamp(std::min(cell_h / 135, cell_w / 240), 1, 4); }
 int title_scale(int s) { return s + 1; }
 
 int line_height(int s) { return (kGlyphHeight + 3) * s; }
@@ -78,7 +79,7 @@ MontageLayout montage_layout(int cell_w, int cell_h, int count, int columns, int
   if (count < 1) throw std::invalid_argument("compose_montage: no cells to arrange (need at least one)");
   if (columns < 1) throw std::invalid_argument("compose_montage: columns must be >= 1, got " + std::to_string(columns));
   MontageLayout L;
-  L.scale = font_scale(cell_h);
+  L.scale = font_scale(cell_w, cell_h);
   const int s = L.scale;
   L.columns = std::min(columns, count);  // no empty columns when there are fewer cells
   L.rows = (count + L.columns - 1) / L.columns;
