@@ -115,6 +115,24 @@ void set_threads(int threads);
 // (std::to_string keeps 6 decimals: --duration 1e-7 became time.duration=0.000000).
 std::string number_override(const std::string& path, double value);
 
+// `sluice montage`: snapshots of a scene at several times (and, with --vary, for several
+// values of one scene setting) in one grid image with one shared colour scale.
+struct MontageOptions {
+  std::string scene;
+  std::string times;       // "T1,T2,...": strictly increasing, within [0, time.duration]
+  std::string vary;        // "KEY=V1,V2,...": one fresh run per value (applied as --set KEY=V)
+  int cols = 0;            // 0: the number of times when varying, else min(4, times)
+  std::vector<std::string> set;
+  std::string cell = "480x270";  // size of each rendered cell, WxH
+  std::string color_by;    // empty: the scene's render.color_by
+  std::string colormap;    // empty: the scene's render.colormap
+  std::string range;       // "lo:hi" or "auto"; empty: the scene's render range
+  std::string title;
+  std::string output;      // empty: <output directory>/montage.png
+  int threads = 0;
+};
+int run_montage(const MontageOptions& o);
+
 }  // namespace sluice::app
 
 namespace sluice::app {

@@ -152,6 +152,25 @@ int main(int argc, char** argv) {
   stillcmd->add_option("--threads", still.threads, "OpenMP threads")->check(threads);
   stillcmd->add_option("--set", still.set, "Override a scene value: path=value")->take_all();
 
+  MontageOptions mont;
+  CLI::App* montagecmd = app.add_subcommand("montage", "Render snapshots at several times (and settings) into one grid PNG");
+  montagecmd->add_option("scene", mont.scene, "Scene file (JSON)")->required();
+  montagecmd->add_option("--times", mont.times, "Simulated times T1,T2,... [s], strictly increasing, within 0..time.duration")
+      ->required();
+  montagecmd->add_option("--vary", mont.vary, "One fresh run per value: KEY=V1,V2,... (each applied as --set KEY=V)");
+  montagecmd->add_option("--cols", mont.cols, "Cells per row (default: the number of times with --vary, else up to 4)")
+      ->check(number_check(true, 1, false, 4096));
+  montagecmd->add_option("--set", mont.set, "Override a scene value: path=value")->take_all();
+  montagecmd->add_option("--cell", mont.cell, "Size of each cell WxH (default 480x270)");
+  montagecmd->add_option("--color-by", mont.color_by, "cfl, speed, pressure, density_error (default: render.color_by)")
+      ->check(CLI::IsMember({"cfl", "speed", "pressure", "density_error"}));
+  montagecmd->add_option("--colormap", mont.colormap, "spectrum, viridis, turbo (default: render.colormap)")
+      ->check(CLI::IsMember({"spectrum", "viridis", "turbo"}));
+  montagecmd->add_option("--range", mont.range, "Colour range lo:hi or auto, shared by all cells (default: render.range)");
+  montagecmd->add_option("--title", mont.title, "Title line above the grid");
+  montagecmd->add_option("-o,--output", mont.output, "PNG file (default: <output directory>/montage.png)");
+  montagecmd->add_option("--threads", mont.threads, "OpenMP threads")->check(threads);
+
   CompareOptions cmp;
   CLI::App* compare = app.add_subcommand("compare", "Compare two PNG images; exit 0 when they match, 1 otherwise");
   compare->add_option("a", cmp.a, "First PNG")->required();
@@ -251,6 +270,7 @@ int main(int argc, char** argv) {
     if (*benchcmd) return run_bench(bench);
     if (*render) return run_render(ren);
     if (*stillcmd) return run_still(still);
+    if (*montagecmd) return run_montage(mont);
     if (*compare) return run_compare(cmp);
     if (*benchrender) return run_bench_render(brender);
     if (*suitecmd) return run_suite(suite);

@@ -1,0 +1,141 @@
+#include "view/montage.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "render/font.h"
+#include "render/frame.h"
+
+namespace sluice::view {
+
+using namespace sluice::render;
+
+namespace {
+
+constexpr Rgb kBackground{255, 255, 255};
+constexpr Rgb kInk{25, 25, 25};
+constexpr int kTickCount = 5;
+constexpr int kTickLabelChars = 7;  // tick_label() is at most this long
+
+std::string size_text(const Image& img) { return std::to_string(img.width) + "x" + std::to_string(img.height); }
+
+// The font grows with the cells, as the renderer's does with the frame, so labels stay
+// readable at any cell size: 2 for 480x270 cells, at most 4. Narrow cells keep it small
+// enough for a label like "boundary_pressure = extrapolation" (33 characters) to fit.
+int font_scale(int cell_w, int cell_h) { return std::clamp(std::min(cell_h / 135, cell_w / 240), 1, 4); }
+int title_scale(int s) { return s + 1; }
+
+int line_height(int s) { return (kGlyphHeight + 3) * s; }
+
+int colorbar_strip_width(const MontageColorbar& c, int s) {
+  const int ticks = 8 * s + 4 * s + text_width(std::string(kTickLabelChars, '0'), s);
+  return std::max(ticks, text_width(c.label, s));
+}
+
+// `text` shortened with ".." until it fits `width` pixels: a long label must not run
+// into the neighbouring cell's band. Labels lose their start ("..PRESSURE = ZERO"), since
+// their end (the value) is what tells cells apart; a title loses its end.
+enum class Cut { start, end };
+std::string fit_text(std::string text, int width, int s, Cut cut) {
+  if (text_width(text, s) <= width) return text;
+  while (!text.empty() && text_width(text + "..", s) > width) cut == Cut::end ? text.pop_back() : (void)text.erase(0, 1);
+  return cut == Cut::end ? text + ".." : ".." + text;
+}
+
+void draw_colorbar(Image& img, const MontageLayout& L, const MontageColorbar& c) {
+  const int s = L.scale;
+  const Colormap cmap(c.colormap);
+  for (int j = 0; j < L.bar_h; ++j) fill_rect(img, L.bar_x, L.bar_y + j, L.bar_w, 1, cmap.at(1.0 - (j + 0.5) / L.bar_h));
+  fill_rect(img, L.bar_x - 1, L.bar_y - 1, L.bar_w + 2, 1, kInk);
+  fill_rect(img, L.bar_x - 1, L.bar_y + L.bar_h, L.bar_w + 2, 1, kInk);
+  fill_rect(img, L.bar_x - 1, L.bar_y - 1, 1, L.bar_h + 2, kInk);
+  fill_rect(img, L.bar_x + L.bar_w, L.bar_y - 1, 1, L.bar_h + 2, kInk);
+  for (int k = 0; k < kTickCount; ++k) {
+    const double f = static_cast<double>(k) / (kTickCount - 1);
+    const int y = L.bar_y + L.bar_h - static_cast<int>(std::lround(f * (L.bar_h - 1))) - 1;
+    fill_rect(img, L.bar_x + L.bar_w, y, 2 * s, std::max(1, s / 2), kInk);
+    draw_text(img, L.bar_x + L.bar_w + 4 * s, y - kGlyphHeight * s / 2, tick_label(c.lo + f * (c.hi - c.lo)), s, kInk);
+  }
+  // The field's name in the band above the bar, as each cell's labels are above the cell.
+  draw_text(img, L.bar_x, L.bar_y - line_height(s) - 2 * s, c.label, s, kInk);
+}
+
+void check_cells(const std::vector<MontageCell>& cells) {
+  if (cells.empty()) throw std::invalid_argument("compose_montage: no cells to arrange (need at least one)");
+  const Image& first = cells.front().image;
+  if (first.width < 1 || first.height < 1)
+    throw std::invalid_argument("compose_montage: cell 0 is empty (" + size_text(first) + ")");
+  for (size_t i = 1; i < cells.size(); ++i)
+    if (cells[i].image.width != first.width || cells[i].image.height != first.height)
+      throw std::invalid_argument("compose_montage: cell " + std::to_string(i) + " is " + size_text(cells[i].image) +
+                                  " but cell 0 is " + size_text(first) + "; all cells must have the same size");
+}
+
+}  // namespace
+
+MontageLayout montage_layout(int cell_w, int cell_h, int count, int columns, int label_lines, bool title,
+                             const std::optional<MontageColorbar>& colorbar) {
+  if (count < 1) throw std::invalid_argument("compose_montage: no cells to arrange (need at least one)");
+  if (columns < 1) throw std::invalid_argument("compose_montage: columns must be >= 1, got " + std::to_string(columns));
+  MontageLayout L;
+  L.scale = font_scale(cell_w, cell_h);
+  const int s = L.scale;
+  L.columns = std::min(columns, count);  // no empty columns when there are fewer cells
+  L.rows = (count + L.columns - 1) / L.columns;
+  L.cell_w = cell_w;
+  L.cell_h = cell_h;
+  L.margin = 8 * s;
+  L.gap = 8 * s;
+  L.title_h = title ? kGlyphHeight * title_scale(s) + 8 * s : 0;
+  // At least one line, so that the colorbar's name has a band even without cell labels.
+  L.band_h = std::max(1, label_lines) * line_height(s) + 2 * s;
+  const int grid_w = L.columns * cell_w + (L.columns - 1) * L.gap;
+  const int grid_h = L.rows * (L.band_h + cell_h) + (L.rows - 1) * L.gap;
+  L.width = L.margin + grid_w + L.margin;
+  L.height = L.margin + L.title_h + grid_h + L.margin;
+  if (colorbar) {
+    // Beside the grid, from the top of the first row's cells to the bottom of the last's.
+    L.bar_x = L.margin + grid_w + 2 * L.gap;
+    L.bar_y = L.margin + L.title_h + L.band_h;
+    L.bar_w = 8 * s;
+    L.bar_h = grid_h - L.band_h;
+    L.width = L.bar_x + colorbar_strip_width(*colorbar, s) + L.margin;
+  }
+  return L;
+}
+
+Image compose_montage(const std::vector<MontageCell>& cells, int columns, const std::string& title,
+                      const std::optional<MontageColorbar>& colorbar) {
+  if (columns < 1) throw std::invalid_argument("compose_montage: columns must be >= 1, got " + std::to_string(columns));
+  check_cells(cells);
+  size_t lines = 0;
+  for (const MontageCell& c : cells) lines = std::max(lines, c.labels.size());
+  const MontageLayout L = montage_layout(cells.front().image.width, cells.front().image.height,
+                                         static_cast<int>(cells.size()), columns, static_cast<int>(lines),
+                                         !title.empty(), colorbar);
+  const int s = L.scale;
+  Image out(L.width, L.height);
+  fill_rect(out, 0, 0, out.width, out.height, kBackground);
+  if (!title.empty()) {
+    const int ts = title_scale(s);
+    const std::string text = fit_text(title, out.width - 2 * L.margin, ts, Cut::end);
+    draw_text(out, (out.width - text_width(text, ts)) / 2, L.margin, text, ts, kInk);
+  }
+  for (size_t i = 0; i < cells.size(); ++i) {
+    const int x = L.cell_x(static_cast<int>(i)), y = L.cell_y(static_cast<int>(i));
+    const Image& img = cells[i].image;
+    for (int row = 0; row < img.height; ++row)
+      std::copy_n(img.at(0, row), static_cast<size_t>(img.width) * 3, out.at(x, y + row));
+    // Lines from the top of the band; the last one sits just above the cell.
+    int ty = y - L.band_h + s;
+    for (const std::string& line : cells[i].labels) {
+      draw_text(out, x, ty, fit_text(line, L.cell_w, s, Cut::start), s, kInk);
+      ty += line_height(s);
+    }
+  }
+  if (colorbar) draw_colorbar(out, L, *colorbar);
+  return out;
+}
+
+}  // namespace sluice::view
