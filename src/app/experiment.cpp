@@ -641,6 +641,45 @@ void neighbour_search(Context& c) {
   c.figure(a, "Neighbour search time per step against particle count, naive O(n^2) against spatial hashing (thesis Figure 14)");
 }
 
+// --- Figures 2 and 8: snapshot montages ----------------------------------------------------------
+
+void montage_figure(Context& c, MontageOptions m, const std::string& file, const std::string& caption) {
+  m.output = (c.dir / file).string();
+  m.set.insert(m.set.end(), c.set.begin(), c.set.end());
+  const int status = run_montage(m);
+  if (status != 0) throw OutputError(m.output + ": montage failed with status " + std::to_string(status));
+  c.md += "![" + caption + "](" + file + ")\n\n*" + caption + "*\n\n";
+}
+
+void snapshots(Context& c) {
+  MontageOptions m;
+  m.scene = c.scene_path("dam_break.json");
+  m.times = c.quick ? "0,0.25" : "0,0.5,1,1.5,2,2.5,3,3.5";
+  m.cols = c.quick ? 2 : 4;
+  m.cell = c.quick ? "160x160" : "320x320";
+  if (c.quick) m.set = {"spacing=0.04"};
+  m.title = "Dam break, coloured by CFL number";
+  c.md += "The breaking dam (`" + m.scene + "`) at " + m.times + " s, coloured by CFL number. Compare with the thesis' "
+          "Figure 2 (130k particles: `--scene scenes/dam_break_130k.json`).\n\n";
+  montage_figure(c, m, "dam_break_snapshots.png", "Breaking dam snapshots with their times (thesis Figure 2)");
+}
+
+void boundary_pressure(Context& c) {
+  MontageOptions m;
+  m.scene = c.scene.empty() ? c.scenes + "/hydrostatic.json" : c.scene;
+  m.times = c.quick ? "0.1" : "3";
+  m.vary = "solver.boundary_pressure=extrapolation,mirroring,zero";
+  m.cols = 3;  // side by side, as in the thesis
+  m.color_by = "pressure";
+  m.cell = c.quick ? "120x132" : "240x264";
+  if (c.quick) m.set = {"time.duration=0.1"};
+  m.title = "Pressure by boundary method";
+  c.md += "The hydrostatic tank (`" + m.scene + "`) at t = " + m.times +
+          " s, coloured by pressure on one shared scale, once per boundary method. Compare with the thesis' Figure 8: "
+          "extrapolation continues the pressure into the wall, zero pressure loads the first fluid rows instead.\n\n";
+  montage_figure(c, m, "pressure_by_method.png", "Pressure field for pressure extrapolation, mirroring and zero pressure (thesis Figure 8)");
+}
+
 struct Experiment {
   const char* name;
   const char* thesis;
@@ -650,10 +689,12 @@ struct Experiment {
 
 const std::vector<Experiment>& experiments() {
   static const std::vector<Experiment> list = {
+      {"snapshots", "Figure 2", "breaking dam snapshots at eight times (montage)", snapshots},
       {"dam-break-iterations", "Figure 3", "solver iterations and compression error over time, breaking dam", dam_break_iterations},
       {"iisph-dt", "Figure 6a, Table 2", "IISPH iterations and pressure/neighbour/overall time against dt, column", iisph_dt},
       {"column-height", "Figure 6b", "IISPH iterations against column height at fixed dt", column_height_experiment},
       {"fixed-iterations", "Figure 7", "compression error against a fixed number of Jacobi iterations", fixed_iterations},
+      {"boundary-pressure", "Figure 8", "pressure field of the three boundary methods side by side (montage)", boundary_pressure},
       {"boundary-gamma", "Figure 9", "gamma1-3 search for each boundary method, best values", boundary_gamma},
       {"boundary-iterations", "Figure 10", "iteration distributions per boundary method", boundary_iterations},
       {"wcsph", "Table 3, Figure 12", "WCSPH error against stiffness, time against dt", wcsph},
