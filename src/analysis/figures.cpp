@@ -174,7 +174,11 @@ std::string scatter_plot(const FigureSpec& spec, const std::vector<FigureSeries>
   if (!hx.empty()) {
     s += datablock("highlight", {hx, hy});
     plot += ", \\\n     $highlight using 1:2 with points pt 6 ps 3.2 lw 3 lc rgb \"#e31a1c\" title " +
-            gnuplot_quote(spec.highlight) + " noenhanced";
+            // "best=1" is titled "best"; other conditions as written.
+            gnuplot_quote(spec.highlight.size() > 2 && spec.highlight.ends_with("=1")
+                              ? spec.highlight.substr(0, spec.highlight.size() - 2)
+                              : spec.highlight) +
+            " noenhanced";
   }
   if (spec.pareto) {
     std::vector<double> px, py;
@@ -267,11 +271,19 @@ std::string axis_label(const std::string& c) {
       {"wall_s", "wall time [s]"},
       {"s_per_simulated_s", "wall time per simulated second [s]"},
       {"us_per_particle_step", "wall time per particle-step [µs]"},
+      {"us_neighbors_per_particle", "neighbour search per particle-step [µs]"},
+      {"us_pressure_per_particle_iteration", "pressure solve per particle and iteration [µs]"},
       {"stiffness", "stiffness k [Pa m]"},
+      {"pressure_s", "pressure solve [s]"},
+      {"neighbors_s", "neighbour search [s]"},
+      {"overall_s", "overall [s]"},
+      {"avg_predicted_error_percent", "predicted compression error (Eq. 23) [%]"},
+      {"ms_per_step", "wall time per step [ms]"},
+      {"ms_neighbors_per_step", "neighbour search [ms per step]"},
       {"height", "column height [m]"},
-      {"gamma1", "γ_1"},
-      {"gamma2", "γ_2"},
-      {"gamma3", "γ_3"},
+      {"gamma1", "γ1"},
+      {"gamma2", "γ2"},
+      {"gamma3", "γ3"},
   };
   const auto it = known.find(c);
   return it == known.end() ? c : it->second;
@@ -312,7 +324,11 @@ std::vector<FigureSeries> figure_series(const FigureSpec& spec, const std::vecto
         FigureSeries f;
         std::vector<std::string> parts;
         if (tables.size() > 1 || (groups.size() == 1 && yc.size() == 1)) parts.push_back(input_label);
-        if (gc >= 0 && (groups.size() > 1 || tables.size() == 1)) parts = {tables.size() > 1 ? input_label + ": " + g : g};
+        // A group is named by its column, except where the value names itself (iisph, zero).
+        double numeric = 0;
+        const std::string group_name = parse_number(g, numeric) ? spec.group + " = " + g : g;
+        if (gc >= 0 && (groups.size() > 1 || tables.size() == 1))
+          parts = {tables.size() > 1 ? input_label + ": " + group_name : group_name};
         if (yc.size() > 1) {
           // Box tics are short: "ms_pressure" -> "pressure"; legends get the full label.
           const std::string& y = spec.y[k];
@@ -348,6 +364,8 @@ std::string figure_script(const FigureSpec& spec, const std::vector<FigureSeries
   if (!yl.empty()) s += "set ylabel " + gnuplot_quote(yl) + " noenhanced\n";
   if (spec.logx) s += "set logscale x\n";
   if (spec.logy) s += "set logscale y\n";
+  // Many legend entries would cover the data: put the key beside the plot.
+  if (spec.kind != FigureKind::Box && series.size() * (spec.mean ? 2 : 1) > 4) s += "set key outside right top\n";
   switch (spec.kind) {
     case FigureKind::Series: return s + series_plot(spec, series);
     case FigureKind::Box: return s + box_plot(series);
