@@ -73,6 +73,22 @@ FrameLayout fit_layout(const FrameSettings& s) {
 FrameRenderer::FrameRenderer(const FrameSettings& s)
     : s_(s), layout_(fit_layout(s)), cmap_(s.colormap), gl_(s.width, s.height, s.msaa, s.egl) {}
 
+void draw_colorbar_bar(Image& img, int x, int y, int w, int h, int s, const Colormap& cmap, double lo, double hi) {
+  // The bar, top = hi.
+  for (int j = 0; j < h; ++j) fill_rect(img, x, y + j, w, 1, cmap.at(1.0 - (j + 0.5) / h));
+  // Frame around it and ticks with labels.
+  fill_rect(img, x - 1, y - 1, w + 2, 1, kInk);
+  fill_rect(img, x - 1, y + h, w + 2, 1, kInk);
+  fill_rect(img, x - 1, y - 1, 1, h + 2, kInk);
+  fill_rect(img, x + w, y - 1, 1, h + 2, kInk);
+  for (int k = 0; k < kTickCount; ++k) {
+    const double f = static_cast<double>(k) / (kTickCount - 1);
+    const int ty = y + h - static_cast<int>(std::lround(f * (h - 1))) - 1;
+    fill_rect(img, x + w, ty, 2 * s, std::max(1, s / 2), kInk);
+    draw_text(img, x + w + 4 * s, ty - kGlyphHeight * s / 2, tick_label(lo + f * (hi - lo)), s, kInk);
+  }
+}
+
 namespace {
 
 void draw_colorbar(Image& img, const FrameLayout& L, const Colormap& cmap, double lo, double hi,
@@ -80,22 +96,7 @@ void draw_colorbar(Image& img, const FrameLayout& L, const Colormap& cmap, doubl
   const int s = L.scale;
   // The strip is the colorbar's own: particles outside the view window may reach it.
   fill_rect(img, L.bar_x - 6 * s, 0, img.width - (L.bar_x - 6 * s), img.height, kBackground);
-  // The bar, top = hi.
-  for (int j = 0; j < L.bar_h; ++j) {
-    const Rgb c = cmap.at(1.0 - (j + 0.5) / L.bar_h);
-    fill_rect(img, L.bar_x, L.bar_y + j, L.bar_w, 1, c);
-  }
-  // Frame around it and ticks with labels.
-  fill_rect(img, L.bar_x - 1, L.bar_y - 1, L.bar_w + 2, 1, kInk);
-  fill_rect(img, L.bar_x - 1, L.bar_y + L.bar_h, L.bar_w + 2, 1, kInk);
-  fill_rect(img, L.bar_x - 1, L.bar_y - 1, 1, L.bar_h + 2, kInk);
-  fill_rect(img, L.bar_x + L.bar_w, L.bar_y - 1, 1, L.bar_h + 2, kInk);
-  for (int k = 0; k < kTickCount; ++k) {
-    const double f = static_cast<double>(k) / (kTickCount - 1);
-    const int y = L.bar_y + L.bar_h - static_cast<int>(std::lround(f * (L.bar_h - 1))) - 1;
-    fill_rect(img, L.bar_x + L.bar_w, y, 2 * s, std::max(1, s / 2), kInk);
-    draw_text(img, L.bar_x + L.bar_w + 4 * s, y - kGlyphHeight * s / 2, tick_label(lo + f * (hi - lo)), s, kInk);
-  }
+  draw_colorbar_bar(img, L.bar_x, L.bar_y, L.bar_w, L.bar_h, s, cmap, lo, hi);
   const int tw = text_width(title, s);
   const int tx = std::min(L.bar_x, img.width - tw - 2 * s);
   draw_text(img, tx, L.bar_y - (kGlyphHeight + 5) * s, title, s, kInk);

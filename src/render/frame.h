@@ -71,4 +71,8 @@ class FrameRenderer {
 // Short tick label (at most 7 characters), e.g. "0.25", "1200", "1.5e+04".
 std::string tick_label(double v);
 
+// A colorbar's bar at (x, y), w x h pixels, top = hi, with its frame and five labelled
+// ticks at its right (font scale s). Frames and montages draw their colorbars with it.
+void draw_colorbar_bar(Image& img, int x, int y, int w, int h, int s, const Colormap& cmap, double lo, double hi);
+
 }  // namespace sluice::render

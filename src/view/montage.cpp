@@ -15,7 +15,6 @@ namespace {
 
 constexpr Rgb kBackground{255, 255, 255};
 constexpr Rgb kInk{25, 25, 25};
-constexpr int kTickCount = 5;
 constexpr int kTickLabelChars = 7;  // tick_label() is at most this long
 
 std::string size_text(const Image& img) { return std::to_string(img.width) + "x" + std::to_string(img.height); }
@@ -45,18 +44,7 @@ std::string fit_text(std::string text, int width, int s, Cut cut) {
 
 void draw_colorbar(Image& img, const MontageLayout& L, const MontageColorbar& c) {
   const int s = L.scale;
-  const Colormap cmap(c.colormap);
-  for (int j = 0; j < L.bar_h; ++j) fill_rect(img, L.bar_x, L.bar_y + j, L.bar_w, 1, cmap.at(1.0 - (j + 0.5) / L.bar_h));
-  fill_rect(img, L.bar_x - 1, L.bar_y - 1, L.bar_w + 2, 1, kInk);
-  fill_rect(img, L.bar_x - 1, L.bar_y + L.bar_h, L.bar_w + 2, 1, kInk);
-  fill_rect(img, L.bar_x - 1, L.bar_y - 1, 1, L.bar_h + 2, kInk);
-  fill_rect(img, L.bar_x + L.bar_w, L.bar_y - 1, 1, L.bar_h + 2, kInk);
-  for (int k = 0; k < kTickCount; ++k) {
-    const double f = static_cast<double>(k) / (kTickCount - 1);
-    const int y = L.bar_y + L.bar_h - static_cast<int>(std::lround(f * (L.bar_h - 1))) - 1;
-    fill_rect(img, L.bar_x + L.bar_w, y, 2 * s, std::max(1, s / 2), kInk);
-    draw_text(img, L.bar_x + L.bar_w + 4 * s, y - kGlyphHeight * s / 2, tick_label(c.lo + f * (c.hi - c.lo)), s, kInk);
-  }
+  render::draw_colorbar_bar(img, L.bar_x, L.bar_y, L.bar_w, L.bar_h, s, Colormap(c.colormap), c.lo, c.hi);
   // The field's name in the band above the bar, as each cell's labels are above the cell.
   draw_text(img, L.bar_x, L.bar_y - line_height(s) - 2 * s, c.label, s, kInk);
 }
