@@ -15,13 +15,11 @@ using analysis::FigureSpec;
 
 namespace {
 
+// --size: the syntax of --resolution (view::parse_resolution), with a figure's bounds.
 void parse_size(const std::string& text, FigureSpec& spec) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 100 || h < 100 || w > 10000 ||
-      h > 10000)
+  view::parse_resolution(text, spec.width, spec.height, "--size");
+  if (spec.width < 100 || spec.height < 100 || spec.width > 10000 || spec.height > 10000)
     throw view::FlagError("--size", text, "WxH in pixels, each side 100 to 10000 (e.g. 1200x800)");
-  spec.width = w, spec.height = h;
 }
 
 FigureSpec spec_from(const FiguresOptions& o, FigureKind kind) {
