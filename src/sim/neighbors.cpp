@@ -199,7 +199,7 @@ void fill_pair_cache(const std::vector<Vec2>& query, const std::vector<Vec2>& po
     for (Index k = lists.offset[i]; k < lists.offset[i + 1]; ++k) {
       const Vec2 r = query[i] - points[lists.j[k]];
       const double d = r.norm();
-      if (cache.grad) lists.grad[k] = r * kernel.dWdr_over_r(d);
+      if (cache.grad) lists.grad[k] = (r * kernel.dWdr_over_r(d)).cast<float>();
       if (cache.w) lists.w[k] = kernel.W(d);
     }
   });

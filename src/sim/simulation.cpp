@@ -406,7 +406,7 @@ void Simulation::find_neighbors_phase() {
   }
 }
 
-// One pass over all pairs: caches grad W for fluid and boundary pairs (and W for
+// One pass over all pairs: caches grad W (in single precision, see NeighborLists) for fluid and boundary pairs (and W for
 // boundary pairs, which Eq. 25 gathers again) and sums the density of Eq. 13 with the
 // boundary term of section 4.1:
 //   rho_i = sum_f m_f W_if + gamma2 sum_b m_b W_ib,  m_b = rho0 V_b.
@@ -424,7 +424,7 @@ void Simulation::compute_density() {
       const Vec2 r = xi - fluid_.x[ff_.j[k]];
       kernel_.eval(r.norm(), w, dw);
       sf += w;
-      ff_.grad[k] = dw * r;
+      ff_.grad[k] = (dw * r).cast<float>();
     }
     double sb = 0.0;
     for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
@@ -433,7 +433,7 @@ void Simulation::compute_density() {
       kernel_.eval(r.norm(), w, dw);
       sb += boundary_.volume[b] * w;
       fb_.w[k] = w;
-      fb_.grad[k] = dw * r;
+      fb_.grad[k] = (dw * r).cast<float>();
     }
     fluid_.rho[i] = mass_ * sf + g2 * rho0 * sb;
   });
@@ -461,12 +461,12 @@ void Simulation::apply_nonpressure(double dt) {
     for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
       const Index j = ff_.j[k];
       const Vec2 xij = xi - fluid_.x[j];
-      a += (mass_ / fluid_.rho[j]) * (xij.dot(ff_.grad[k]) / (xij.squaredNorm() + eps)) * (vi - fluid_.v[j]);
+      a += (mass_ / fluid_.rho[j]) * (xij.dot(ff_.grad[k].cast<double>()) / (xij.squaredNorm() + eps)) * (vi - fluid_.v[j]);
     }
     for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
       const Index b = fb_.j[k];
       const Vec2 xib = xi - boundary_.x[b];
-      a += boundary_.volume[b] * (xib.dot(fb_.grad[k]) / (xib.squaredNorm() + eps)) * (vi - boundary_.v[b]);
+      a += boundary_.volume[b] * (xib.dot(fb_.grad[k].cast<double>()) / (xib.squaredNorm() + eps)) * (vi - boundary_.v[b]);
     }
     a_v[i] = 2.0 * nu * a;
   });
@@ -483,7 +483,7 @@ void Simulation::prepare_boundary_terms() {
   scratch_.grad_b.resize(n);
   parallel_for(n, [&](Index i) {
     Vec2 g = Vec2::Zero();
-    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) g += (rho0 * boundary_.volume[fb_.j[k]]) * fb_.grad[k];
+    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) g += (rho0 * boundary_.volume[fb_.j[k]]) * fb_.grad[k].cast<double>();
     scratch_.grad_b[i] = g;
   });
   scratch_.pb_over_rho2.assign(nb, 0.0);
@@ -537,14 +537,14 @@ void Simulation::compute_pressure_acceleration() {
   parallel_for(n, [&](Index i) {
     const double pri = pr[i];
     Vec2 a = Vec2::Zero();
-    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) a += (pri + pr[ff_.j[k]]) * ff_.grad[k];
+    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) a += (pri + pr[ff_.j[k]]) * ff_.grad[k].cast<double>();
     a *= -mass_;
     a -= (c * g3 * pri) * scratch_.grad_b[i];
     if (extrapolate) {
       Vec2 ab = Vec2::Zero();
       for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
         const Index b = fb_.j[k];
-        ab += (boundary_.volume[b] * scratch_.pb_over_rho2[b]) * fb_.grad[k];
+        ab += (boundary_.volume[b] * scratch_.pb_over_rho2[b]) * fb_.grad[k].cast<double>();
       }
       a -= (g3 * rho0) * ab;
     }
@@ -595,7 +595,7 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
     double div = 0.0, grad2 = 0.0;
     Vec2 sum_grad = Vec2::Zero();
     for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
-      const Vec2& gw = ff_.grad[k];
+      const Vec2 gw = ff_.grad[k].cast<double>();
       div += (vi - fluid_.v[ff_.j[k]]).dot(gw);
       sum_grad += gw;
       grad2 += gw.squaredNorm();
@@ -607,8 +607,8 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
     for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
       const Index b = fb_.j[k];
       const double mb = rho0 * boundary_.volume[b];
-      div_b += mb * (vi - vb_scale * boundary_.v[b]).dot(fb_.grad[k]);
-      if (coupling && scratch_.ext_wsum[b] > 0.0) e += (mb * fb_.w[k] / scratch_.ext_wsum[b]) * fb_.grad[k];
+      div_b += mb * (vi - vb_scale * boundary_.v[b]).dot(fb_.grad[k].cast<double>());
+      if (coupling && scratch_.ext_wsum[b] > 0.0) e += (mb * fb_.w[k] / scratch_.ext_wsum[b]) * fb_.grad[k].cast<double>();
     }
     scratch_.s[i] = (rho0 - rhoi) / dt - (div + g2 * div_b);
     const double inv_rho2 = 1.0 / (rhoi * rhoi);
@@ -634,7 +634,7 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
     const double sum = parallel_sum(n, [&](Index i) {
       const Vec2 ai = scratch_.a_p[i];
       double ap = 0.0;
-      for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) ap += (ai - scratch_.a_p[ff_.j[k]]).dot(ff_.grad[k]);
+      for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) ap += (ai - scratch_.a_p[ff_.j[k]]).dot(ff_.grad[k].cast<double>());
       ap = dt * (mass_ * ap + g2 * ai.dot(scratch_.grad_b[i]));
       const double si = scratch_.s[i], aii = scratch_.a_ii[i];
       const double p = aii != 0.0 ? std::max(fluid_.p[i] + omega / aii * (si - ap), 0.0) : 0.0;

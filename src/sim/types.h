@@ -7,6 +7,8 @@
 namespace sluice {
 
 using Vec2 = Eigen::Vector2d;
+// Single precision only where memory traffic decides the speed (cached kernel gradients).
+using Vec2f = Eigen::Vector2f;
 using Index = std::int32_t;
 
 }  // namespace sluice
