@@ -218,6 +218,22 @@ TEST(Experiments, NeighbourSearchAndSpeedErrorWriteTheirTables) {
   EXPECT_NE(read_text(dir.work() / "out/speed-error/summary.md").find("Pareto front from fastest"), std::string::npos);
 }
 
+TEST(Experiments, ScalingRunsEachWidthAtTheToleranceAndWithFixedIterations) {
+  const CaseDir dir;
+  const auto r = run_sluice(dir, experiment_args({"scaling"}));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto t = analysis::read_csv_table((dir.work() / "out/scaling/scaling.csv").string());
+  ASSERT_EQ(t.rows.size(), 2u);
+  const auto col = [&](const std::string& name) { return static_cast<size_t>(t.column(name)); };
+  EXPECT_LT(std::stol(t.rows[0][col("particles")]), std::stol(t.rows[1][col("particles")]));
+  for (const auto& row : t.rows) {
+    EXPECT_EQ(std::stod(row[col("fixed_iterations")]), 6.0);  // every step ran exactly the fixed count
+    EXPECT_GT(std::stod(row[col("us_per_particle_step_fixed_iterations")]), 0.0);
+  }
+  EXPECT_EQ(t.rows[0][col("ratio_to_first_fixed_iterations")], "1");
+  EXPECT_NE(read_text(dir.work() / "out/scaling/summary.md").find("with fixed iterations"), std::string::npos);
+}
+
 TEST(Experiments, UnknownNameAndBadFiguresInputAreOneLineErrors) {
   const CaseDir dir;
   auto r = run_sluice(dir, {"experiment", "figure-99"});

@@ -7,26 +7,34 @@ set xlabel "fluid particles" noenhanced
 set ylabel "wall time [µs]" noenhanced
 set logscale x
 $s0 << EOD
-10000 0.2989
-30000 0.34807
-100000 0.55122
-300000 0.60565
-1000000 0.6275
+10000 0.34028
+30000 0.37284
+100000 0.53242
+300000 0.52769
+1000000 0.56649
 EOD
 $s1 << EOD
-10000 0.1382
-30000 0.1494
-100000 0.1998
-300000 0.2586
-1000000 0.2413
+10000 0.36476
+30000 0.38108
+100000 0.43186
+300000 0.53717
+1000000 0.56613
 EOD
 $s2 << EOD
-10000 0.03059
-30000 0.03266
-100000 0.05147
-300000 0.06322
-1000000 0.06016
+10000 0.1568
+30000 0.1529
+100000 0.1853
+300000 0.191
+1000000 0.2097
+EOD
+$s3 << EOD
+10000 0.03355
+30000 0.04459
+100000 0.03969
+300000 0.05571
+1000000 0.05903
 EOD
 plot $s0 using 1:2 with linespoints pt 7 ps 1.2 lw 2 lc rgb "#1f77b4" title "wall time per particle-step [µs]" noenhanced, \
-     $s1 using 1:2 with linespoints pt 7 ps 1.2 lw 2 lc rgb "#d62728" title "neighbour search per particle-step [µs]" noenhanced, \
-     $s2 using 1:2 with linespoints pt 7 ps 1.2 lw 2 lc rgb "#2ca02c" title "pressure solve per particle and iteration [µs]" noenhanced
+     $s1 using 1:2 with linespoints pt 7 ps 1.2 lw 2 lc rgb "#d62728" title "us_per_particle_step_fixed_iterations" noenhanced, \
+     $s2 using 1:2 with linespoints pt 7 ps 1.2 lw 2 lc rgb "#2ca02c" title "neighbour search per particle-step [µs]" noenhanced, \
+     $s3 using 1:2 with linespoints pt 7 ps 1.2 lw 2 lc rgb "#ff7f0e" title "pressure solve per particle and iteration [µs]" noenhanced
