@@ -654,9 +654,10 @@ void scaling(Context& c) {
   c.md += "A layer 0.5 m deep widened from " + std::to_string(counts.front()) + " to " + std::to_string(counts.back()) +
           " particles, 20 steps of 0.5 ms, at the solver's tolerance and with " + std::to_string(kFixedIterations) +
           " fixed Jacobi iterations (the same work per particle at every width), interleaved, " +
-          std::string(c.quick ? "1 round" : "median of 5 rounds (3 from 300k on)") + ", " + std::to_string(omp_get_max_threads()) + " threads, load average " + fmt(start_load, 3) +
+          (c.quick ? "1 round" : "median of 5 rounds (3 from 300k on)") + ", " + std::to_string(omp_get_max_threads()) +
+          " threads, load average " + fmt(start_load, 3) +
           " at the start. Target: the time per particle-step within 25 % over the range (O(n)). Measured: largest / "
-          "smallest = " + fmt(hi / lo, 3) + " at the tolerance (iterations " + "grow with the width), " +
+          "smallest = " + fmt(hi / lo, 3) + " at the tolerance (iterations grow with the width), " +
           fmt(hi_fixed / lo_fixed, 3) + " with fixed iterations.\n\n";
   c.table(c.dir / "scaling.csv", {});
   FigureSpec a = spec(FigureKind::Series, c.dir / "scaling.csv", "particles",
