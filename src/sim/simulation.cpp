@@ -13,6 +13,12 @@ namespace sluice {
 namespace {
 
 constexpr long kReorderEvery = 16;  // steps between spatial sorts of the fluid arrays
+// Bounds of the fused Jacobi sweep's blocks (see jacobi_block_size): at most about
+// 2 MB of pairs per block, so the blocks in flight stay in a 32 MB L3 with room to
+// spare. Measured on 1M particles: 8192 to 65536 equally fast, 2048 to 4096 slower
+// (more deferred updates: 22 % of the particles at 1024, 1.8 % at 16384).
+constexpr Index kMinSweepBlock = 1024;
+constexpr Index kMaxSweepBlock = 16384;
 
 // Warm start p^(0) = 0.5 p(t - dt), the choice of [Ihm+14a]. A factor of 1 keeps the
 // part of the previous pressure that the operator A barely sees (lattice-scale,
@@ -527,29 +533,84 @@ void Simulation::update_boundary_pressure() {
 //               - gamma3 sum_b m_b (p_i/rho_i^2 + p_b/rho_b^2) grad W_ib.
 // Mirroring (4.2.2) sets p_b/rho_b^2 = p_i/rho_i^2, zero pressure (4.2.3) p_b = 0, so
 // their boundary sum is c gamma3 (p_i/rho_i^2) grad_b_i with c = 2 or 1.
-void Simulation::compute_pressure_acceleration() {
-  const Index n = fluid_.size();
-  const double g3 = settings_.gamma3, rho0 = settings_.rest_density;
-  const bool extrapolate = settings_.boundary_pressure == BoundaryPressure::Extrapolation;
+Vec2 Simulation::pressure_acceleration_of(Index i) const {
+  const double g3 = settings_.gamma3;
   const double c = settings_.boundary_pressure == BoundaryPressure::Mirroring ? 2.0 : 1.0;
   const std::vector<double>& pr = scratch_.p_over_rho2;
-  scratch_.a_p.resize(n);
-  parallel_for(n, [&](Index i) {
-    const double pri = pr[i];
-    Vec2 a = Vec2::Zero();
-    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) a += (pri + pr[ff_.j[k]]) * ff_.grad[k].cast<double>();
-    a *= -mass_;
-    a -= (c * g3 * pri) * scratch_.grad_b[i];
-    if (extrapolate) {
-      Vec2 ab = Vec2::Zero();
-      for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
-        const Index b = fb_.j[k];
-        ab += (boundary_.volume[b] * scratch_.pb_over_rho2[b]) * fb_.grad[k].cast<double>();
-      }
-      a -= (g3 * rho0) * ab;
+  const double pri = pr[i];
+  Vec2 a = Vec2::Zero();
+  for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) a += (pri + pr[ff_.j[k]]) * ff_.grad[k].cast<double>();
+  a *= -mass_;
+  a -= (c * g3 * pri) * scratch_.grad_b[i];
+  if (settings_.boundary_pressure == BoundaryPressure::Extrapolation) {
+    Vec2 ab = Vec2::Zero();
+    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
+      const Index b = fb_.j[k];
+      ab += (boundary_.volume[b] * scratch_.pb_over_rho2[b]) * fb_.grad[k].cast<double>();
     }
-    scratch_.a_p[i] = a;
-  });
+    a -= (g3 * settings_.rest_density) * ab;
+  }
+  return a;
+}
+
+void Simulation::compute_pressure_acceleration() {
+  scratch_.a_p.resize(fluid_.size());
+  parallel_for(fluid_.size(), [&](Index i) { scratch_.a_p[i] = pressure_acceleration_of(i); });
+}
+
+// One relaxed Jacobi update of particle i (Algorithm 2's second solver loop): (Ap)_i of
+// Eq. 20 from the accelerations a_p of i and its fluid neighbours, the update of Eq. 21
+// with negative pressures clamped, and the predicted compression of Eq. 23 (stored in
+// err). Reads neighbours' a_p, writes only particle i.
+void Simulation::jacobi_update_of(Index i, double dt, double err_scale) {
+  const double g2 = settings_.gamma2, omega = settings_.omega;
+  const Vec2 ai = scratch_.a_p[i];
+  double ap = 0.0;
+  for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) ap += (ai - scratch_.a_p[ff_.j[k]]).dot(ff_.grad[k].cast<double>());
+  ap = dt * (mass_ * ap + g2 * ai.dot(scratch_.grad_b[i]));
+  const double si = scratch_.s[i], aii = scratch_.a_ii[i];
+  const double p = aii != 0.0 ? std::max(fluid_.p[i] + omega / aii * (si - ap), 0.0) : 0.0;
+  fluid_.p[i] = p;
+  scratch_.p_over_rho2[i] = p / (fluid_.rho[i] * fluid_.rho[i]);
+  scratch_.err[i] = std::max(err_scale * (ap - si), 0.0);
+}
+
+// Blocks of the fused Jacobi sweep: contiguous index ranges, about 8 per thread (for
+// balance) and at most kMaxSweepBlock particles, so that a block's pairs and
+// accelerations are still in cache when its Jacobi updates read them again. Each
+// particle whose fluid neighbours all lie in its own block is marked interior; the
+// others are listed in `deferred`. Only speed depends on the blocks: every particle's
+// arithmetic is the same in any block and on any thread.
+Index Simulation::jacobi_block_size() const {
+  if (jacobi_block_ > 0) return jacobi_block_;
+  const Index threads = static_cast<Index>(omp_get_max_threads());
+  return std::clamp<Index>(fluid_.size() / (8 * threads), kMinSweepBlock, kMaxSweepBlock);
+}
+
+// One Jacobi iteration over all fluid particles: the accelerations of Eq. 24 from the
+// current pressures, then the updates of Eq. 20, 21 and 23. Fused by blocks: each
+// block computes its accelerations and at once updates its interior particles, whose
+// pairs and accelerations are still in cache; after all blocks are done, the deferred
+// particles (those with a neighbour in another block) are updated. The result is the
+// same as two full passes, bit for bit: an update reads only accelerations, which
+// are all computed before any deferred update and, for an interior particle, by its
+// own block.
+void Simulation::jacobi_sweep(Index block, double dt, double err_scale) {
+  const Index n = fluid_.size();
+  const Index blocks = (n + block - 1) / block;
+  const Index nd = static_cast<Index>(scratch_.deferred.size());
+#pragma omp parallel if (n >= kParallelMin)
+  {
+#pragma omp for schedule(dynamic, 1)
+    for (Index b = 0; b < blocks; ++b) {
+      const Index begin = b * block, end = std::min(n, begin + block);
+      for (Index i = begin; i < end; ++i) scratch_.a_p[i] = pressure_acceleration_of(i);
+      for (Index i = begin; i < end; ++i)
+        if (scratch_.interior[i]) jacobi_update_of(i, dt, err_scale);
+    }
+#pragma omp for schedule(static, kForChunk)
+    for (Index k = 0; k < nd; ++k) jacobi_update_of(scratch_.deferred[k], dt, err_scale);
+  }
 }
 
 // ---------------------------------------------------------------------------------
@@ -588,18 +649,27 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
   const bool thesis_init = s.pressure_init == PressureInit::Thesis;
   const double vb_scale = boundary_velocity_in_source_ ? 1.0 : 0.0;
 
-  // Source term s_i (Eq. 19), diagonal a_ii (Eq. 26), initial pressure p^(0) (Eq. 21).
+  const Index block = jacobi_block_size();
+  scratch_.interior.resize(n);
+
+  // Source term s_i (Eq. 19), diagonal a_ii (Eq. 26), initial pressure p^(0) (Eq. 21),
+  // and whether all of i's fluid neighbours lie in i's block of the Jacobi sweep.
   parallel_for(n, [&](Index i) {
     const Vec2 vi = fluid_.v[i];
     const double rhoi = fluid_.rho[i];
+    const Index block_begin = i / block * block, block_end = block_begin + block;
+    bool interior = true;
     double div = 0.0, grad2 = 0.0;
     Vec2 sum_grad = Vec2::Zero();
     for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
+      const Index j = ff_.j[k];
       const Vec2 gw = ff_.grad[k].cast<double>();
-      div += (vi - fluid_.v[ff_.j[k]]).dot(gw);
+      interior &= j >= block_begin && j < block_end;
+      div += (vi - fluid_.v[j]).dot(gw);
       sum_grad += gw;
       grad2 += gw.squaredNorm();
     }
+    scratch_.interior[i] = interior;
     div *= mass_;
     sum_grad *= mass_;
     double div_b = 0.0;
@@ -621,30 +691,19 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
     scratch_.p_over_rho2[i] = p0 * inv_rho2;
   });
 
+  scratch_.deferred.clear();
+  for (Index i = 0; i < n; ++i)
+    if (!scratch_.interior[i]) scratch_.deferred.push_back(i);
   scratch_.err.resize(n);
+  scratch_.a_p.resize(n);
   int l = 0;
   double avg = 0.0;
   const double err_scale = 100.0 * dt / rho0;
   do {
     update_boundary_pressure();
-    compute_pressure_acceleration();
-    // (Ap)_i of Eq. 20 from the accelerations just computed, then the Jacobi update of
-    // Eq. 21 with negative pressures clamped, and the predicted compression of Eq. 23.
-    // Each particle reads neighbours' a_p and writes only its own pressure.
-    const double sum = parallel_sum(n, [&](Index i) {
-      const Vec2 ai = scratch_.a_p[i];
-      double ap = 0.0;
-      for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) ap += (ai - scratch_.a_p[ff_.j[k]]).dot(ff_.grad[k].cast<double>());
-      ap = dt * (mass_ * ap + g2 * ai.dot(scratch_.grad_b[i]));
-      const double si = scratch_.s[i], aii = scratch_.a_ii[i];
-      const double p = aii != 0.0 ? std::max(fluid_.p[i] + omega / aii * (si - ap), 0.0) : 0.0;
-      fluid_.p[i] = p;
-      scratch_.p_over_rho2[i] = p / (fluid_.rho[i] * fluid_.rho[i]);
-      const double e = std::max(err_scale * (ap - si), 0.0);
-      scratch_.err[i] = e;
-      return e;
-    });
-    avg = n ? sum / n : 0.0;
+    jacobi_sweep(block, dt, err_scale);
+    // Eq. 23 averaged in a fixed order, whatever the order of the sweep.
+    avg = n ? parallel_sum(n, [&](Index i) { return scratch_.err[i]; }) / n : 0.0;
     ++l;
   } while ((avg > s.tolerance_percent || l < s.min_iterations) && l < s.max_iterations);
   st.iterations = l;

@@ -29,6 +29,8 @@ struct SolverScratch {
   std::vector<double> a_ii;     // diagonal (Eq. 22/26)
   std::vector<double> s;        // source term (Eq. 19)
   std::vector<double> err;      // predicted compression of Eq. 23 [%]
+  std::vector<std::uint8_t> interior;  // all fluid neighbours in the particle's sweep block
+  std::vector<Index> deferred;         // the particles that are not interior, ascending
   std::vector<double> p_over_rho2;   // p_i / rho_i^2 of fluid particles
   std::vector<double> pb_over_rho2;  // p_b / rho0^2 of boundary particles
   std::vector<double> ext_wsum;      // sum_f W_bf of each boundary particle (Eq. 25 denominator)
@@ -93,6 +95,9 @@ class Simulation {
   // Off: the boundary velocity is left out of the IISPH source term (Eq. 16/19), as in
   // the thesis' own code; only to show that the term matters (tests).
   void set_boundary_velocity_in_source(bool on) { boundary_velocity_in_source_ = on; }
+  // Particles per block of the fused Jacobi sweep (0: automatic). Only speed depends on
+  // it; tests check that the bits do not.
+  void set_jacobi_block_size(Index particles) { jacobi_block_ = particles; }
   // Volumes of section 4.1 of every boundary particle from scratch at the current
   // positions (the reference for the incremental update of moving boundaries).
   std::vector<double> boundary_volumes_from_scratch() const;
@@ -119,6 +124,10 @@ class Simulation {
   void prepare_boundary_terms();              // grad_b, Eq. 25 weights
   void update_boundary_pressure();            // Eq. 25 / 4.2.2 / 4.2.3 -> pb_over_rho2
   void compute_pressure_acceleration();       // Eq. 24 -> a_p
+  Vec2 pressure_acceleration_of(Index i) const;  // Eq. 24 for one particle
+  void jacobi_update_of(Index i, double dt, double err_scale);  // Eq. 20, 21, 23 for one particle
+  Index jacobi_block_size() const;
+  void jacobi_sweep(Index block, double dt, double err_scale);  // Eq. 24, then 20, 21, 23 for all
 
   // Boundaries (chapter 4).
   void move_boundaries(double dt);            // scripted poses at time_ -> x, v, a of moving samples
@@ -140,6 +149,7 @@ class Simulation {
   SolverScratch scratch_;
   bool brute_force_ = false;
   bool boundary_velocity_in_source_ = true;
+  Index jacobi_block_ = 0;  // 0: jacobi_block_size() chooses
 
   // Moving boundaries: the samples on moving objects, and the static samples whose
   // kernel support held a moving sample at the last update (their volumes must be
