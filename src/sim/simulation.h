@@ -31,6 +31,7 @@ struct SolverScratch {
   std::vector<double> err;      // predicted compression of Eq. 23 [%]
   std::vector<std::uint8_t> interior;  // all fluid neighbours in the particle's sweep block
   std::vector<Index> deferred;         // the particles that are not interior, ascending
+  std::vector<double> err_partial;     // sums of err over blocks of kReduceBlock
   std::vector<double> p_over_rho2;   // p_i / rho_i^2 of fluid particles
   std::vector<double> pb_over_rho2;  // p_b / rho0^2 of boundary particles
   std::vector<double> ext_wsum;      // sum_f W_bf of each boundary particle (Eq. 25 denominator)
@@ -95,8 +96,8 @@ class Simulation {
   // Off: the boundary velocity is left out of the IISPH source term (Eq. 16/19), as in
   // the thesis' own code; only to show that the term matters (tests).
   void set_boundary_velocity_in_source(bool on) { boundary_velocity_in_source_ = on; }
-  // Particles per block of the fused Jacobi sweep (0: automatic). Only speed depends on
-  // it; tests check that the bits do not.
+  // Particles per block of the fused Jacobi sweep; 0: automatic, negative: two plain
+  // passes. Only speed depends on it; tests check that the bits do not.
   void set_jacobi_block_size(Index particles) { jacobi_block_ = particles; }
   // Volumes of section 4.1 of every boundary particle from scratch at the current
   // positions (the reference for the incremental update of moving boundaries).
@@ -124,10 +125,16 @@ class Simulation {
   void prepare_boundary_terms();              // grad_b, Eq. 25 weights
   void update_boundary_pressure();            // Eq. 25 / 4.2.2 / 4.2.3 -> pb_over_rho2
   void compute_pressure_acceleration();       // Eq. 24 -> a_p
-  Vec2 pressure_acceleration_of(Index i) const;  // Eq. 24 for one particle
-  void jacobi_update_of(Index i, double dt, double err_scale);  // Eq. 20, 21, 23 for one particle
+  // Constants of Eq. 20, 21, 23, 24 within a step, read once per sweep.
+  struct PressureTerms {
+    double mass, c_gamma3, gamma3_rho0, gamma2, omega, dt, err_scale;
+    bool extrapolate;
+  };
+  PressureTerms pressure_terms(double dt) const;
+  Vec2 pressure_acceleration_of(Index i, const PressureTerms& t) const;  // Eq. 24 for one particle
+  void jacobi_update_of(Index i, const PressureTerms& t);                 // Eq. 20, 21, 23 for one particle
   Index jacobi_block_size() const;
-  void jacobi_sweep(Index block, double dt, double err_scale);  // Eq. 24, then 20, 21, 23 for all
+  double jacobi_sweep(Index block, const PressureTerms& t);  // Eq. 24, then 20, 21, 23 for all; returns the sum of Eq. 23
 
   // Boundaries (chapter 4).
   void move_boundaries(double dt);            // scripted poses at time_ -> x, v, a of moving samples
