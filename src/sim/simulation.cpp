@@ -19,10 +19,10 @@ constexpr long kReorderEvery = 16;  // steps between spatial sorts of the fluid 
 // (more deferred updates: 22 % of the particles at 1024, 1.8 % at 16384).
 constexpr Index kMinSweepBlock = 1024;
 constexpr Index kMaxSweepBlock = 16384;
-// The fused sweep is used when the iteration's arrays exceed this many bytes, twice the
-// 32 MB L3 of the machine it was measured on (see jacobi_block_size). Elsewhere the
-// crossover moves with the cache; either way the bits are the same.
-constexpr double kFuseAboveBytes = 64.0 * 1024 * 1024;
+// The fused sweep is used when the iteration's arrays exceed this many bytes, the L3 of
+// the machine it was measured on (see jacobi_block_size). Elsewhere the crossover moves
+// with the cache; either way the bits are the same.
+constexpr double kFuseAboveBytes = 32.0 * 1024 * 1024;
 
 // Warm start p^(0) = 0.5 p(t - dt), the choice of [Ihm+14a]. A factor of 1 keeps the
 // part of the previous pressure that the operator A barely sees (lattice-scale,
@@ -599,9 +599,10 @@ void Simulation::compute_pressure_acceleration() {
 // arithmetic is the same in any block and on any thread.
 //
 // The sweep pays only when the solver's arrays do not fit in the last-level cache: in
-// cache, the two plain passes are faster (measured on the 0.5 m layer, medians of 3 or 4
-// interleaved runs, pressure phase per particle-step: 10k +7 to 11 %, 30k and 100k +10 %
-// fused; 300k -20 %, 1M -17 %). 0 means the two plain passes.
+// cache, the two plain passes are faster (pressure phase, fused against plain, medians
+// of 3 to 5 interleaved runs on 2 threads: the 0.5 m layer at 10k +7 to 11 %, at 30k
+// and 100k (about 31 MB) +10 %, at 1M -17 %; the 130k dam break (about 41 MB) -11 %).
+// 0 means the two plain passes.
 Index Simulation::jacobi_block_size() const {
   if (jacobi_block_ != 0) return std::max<Index>(jacobi_block_, 0);
   // Bytes the iteration streams: 12 per fluid pair (index and float gradient) and about
