@@ -614,11 +614,12 @@ Index Simulation::jacobi_block_size() const {
 }
 
 // One Jacobi iteration over all fluid particles: the accelerations of Eq. 24 from the
-// current pressures, then the updates of Eq. 20, 21 and 23. Fused by blocks: each
-// block computes its accelerations and at once updates its interior particles, whose
-// pairs and accelerations are still in cache; after all blocks are done, the deferred
-// particles (those with a neighbour in another block) are updated. The result is the
-// same as two full passes, bit for bit: an update reads only accelerations, which
+// current pressures, then the updates of Eq. 20, 21 and 23; returns the sum of Eq. 23.
+// With block = 0, two plain passes. Otherwise fused by blocks: each block computes its
+// accelerations and at once updates its interior particles, whose pairs and
+// accelerations are still in cache; after all blocks are done, the deferred particles
+// (those with a neighbour in another block) are updated. The result is the same as
+// two full passes, bit for bit: an update reads only accelerations, which
 // are all computed before any deferred update and, for an interior particle, by its
 // own block.
 double Simulation::jacobi_sweep(Index block, const PressureTerms& t) {
