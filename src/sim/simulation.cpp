@@ -744,8 +744,9 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
   });
 
   scratch_.deferred.clear();
-  for (Index i = 0; i < n; ++i)
-    if (!scratch_.interior[i]) scratch_.deferred.push_back(i);
+  if (block > 0)  // the plain passes defer nothing
+    for (Index i = 0; i < n; ++i)
+      if (!scratch_.interior[i]) scratch_.deferred.push_back(i);
   scratch_.err.resize(n);
   scratch_.a_p.resize(n);
   int l = 0;
