@@ -278,10 +278,14 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<DeterminismCase>& info) { return info.param.name; });
 
 // The fused Jacobi sweep (Simulation::jacobi_sweep) gives the bits of the two plain
-// passes (block size -1) for any block size: one block holding every particle, blocks
-// of 64 particles that defer most updates, blocks of 1024 that defer some, and the
-// automatic choice; each boundary method reads accelerations differently.
+// passes (block size -1) for any blocks and ranges: one block holding every particle,
+// blocks of 64 particles (most updates wait for a later block or are deferred), blocks
+// of 1024, the automatic choice, and 2, 3 or 7 ranges (more ranges than threads: a
+// thread sweeps several); each boundary method reads accelerations differently.
 TEST(Physics, JacobiSweepBlocksDoNotChangeBits) {
+  struct Sweep {
+    Index block, ranges;
+  };
   for (const char* method : {"extrapolation", "mirroring", "zero"}) {
     const Scene scene = scene_from_json(R"({
       "spacing": 0.01,
@@ -290,17 +294,19 @@ TEST(Physics, JacobiSweepBlocksDoNotChangeBits) {
       "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.8]}],
       "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.8, 1.0]}]
     })");
+    const Sweep sweeps[] = {{-1, 0}, {Index(1) << 30, 1}, {64, 1}, {64, 3}, {1024, 2}, {1024, 7}, {0, 0}};
     std::vector<std::uint64_t> hashes;
-    for (Index block : {Index(-1), Index(1) << 30, Index(64), Index(1024), Index(0)}) {
+    for (const Sweep& sweep : sweeps) {
       Simulation sim(scene);
-      sim.set_jacobi_block_size(block);
+      sim.set_jacobi_sweep(sweep.block, sweep.ranges);
       int iterations = 0;
       for (int s = 0; s < 30; ++s) iterations += sim.step().iterations;
       EXPECT_GT(iterations, 30) << method;  // the solver iterated: the sweep ran more than once per step
       EXPECT_GT(max_speed(sim), 0.01) << method;
       hashes.push_back(test::state_hash(sim));
     }
-    for (size_t k = 1; k < hashes.size(); ++k) EXPECT_EQ(hashes[0], hashes[k]) << method << ", block size case " << k;
+    for (size_t k = 1; k < hashes.size(); ++k)
+      EXPECT_EQ(hashes[0], hashes[k]) << method << ", block " << sweeps[k].block << ", ranges " << sweeps[k].ranges;
   }
 }
 

@@ -13,12 +13,12 @@ namespace sluice {
 namespace {
 
 constexpr long kReorderEvery = 16;  // steps between spatial sorts of the fluid arrays
-// Bounds of the fused Jacobi sweep's blocks (see jacobi_block_size): at most about
-// 2 MB of pairs per block, so the blocks in flight stay in a 32 MB L3 with room to
-// spare. Measured on 1M particles: 8192 to 65536 equally fast, 2048 to 4096 slower
-// (more deferred updates: 22 % of the particles at 1024, 1.8 % at 16384).
-constexpr Index kMinSweepBlock = 1024;
-constexpr Index kMaxSweepBlock = 16384;
+// Particles per block of the fused Jacobi sweep (see jacobi_sweep): a block's pairs
+// (about 2 MB at 16384) stay in cache until its updates read them again.
+constexpr Index kSweepBlock = 16384;
+// An update waits for at most this many blocks after its own; particles with a
+// neighbour further ahead are deferred.
+constexpr int kMaxSweepLag = 2;
 // The fused sweep is used when the iteration's arrays exceed this many bytes, the L3 of
 // the machine it was measured on (see jacobi_block_size). Elsewhere the crossover moves
 // with the cache; either way the bits are the same.
@@ -591,37 +591,70 @@ void Simulation::compute_pressure_acceleration() {
   scratch_.err[i] = std::max(t.err_scale * (ap - si), 0.0);
 }
 
-// Blocks of the fused Jacobi sweep: contiguous index ranges, about 8 per thread (for
-// balance) and at most kMaxSweepBlock particles, so that a block's pairs and
-// accelerations are still in cache when its Jacobi updates read them again. Each
-// particle whose fluid neighbours all lie in its own block is marked interior; the
-// others are listed in `deferred`. Only speed depends on the blocks: every particle's
-// arithmetic is the same in any block and on any thread.
-//
-// The sweep pays only when the solver's arrays do not fit in the last-level cache: in
-// cache, the two plain passes are faster (pressure phase, fused against plain, medians
-// of 3 to 5 interleaved runs on 2 threads: the 0.5 m layer at 10k +7 to 11 %, at 30k
-// and 100k (about 31 MB) +10 %, at 1M -17 %; the 130k dam break (about 41 MB) -11 %).
-// 0 means the two plain passes.
+// The fused Jacobi sweep pays only when the solver's arrays do not fit in the last-level
+// cache: in cache, the two plain passes are faster (pressure phase, fused against plain,
+// medians of 3 to 5 interleaved runs on 2 threads: the 0.5 m layer at 10k +7 to 11 %, at
+// 30k and 100k (about 31 MB) +10 %, at 1M -17 %; the 130k dam break (about 41 MB)
+// -11 %). Returns the block size, 0 for the two plain passes.
 Index Simulation::jacobi_block_size() const {
   if (jacobi_block_ != 0) return std::max<Index>(jacobi_block_, 0);
   // Bytes the iteration streams: 12 per fluid pair (index and float gradient) and about
   // 160 per particle (pressures, accelerations, source, diagonal, boundary sums).
   const double bytes = 12.0 * static_cast<double>(ff_.pairs()) + 160.0 * fluid_.size();
-  if (bytes < kFuseAboveBytes) return 0;
-  const Index threads = static_cast<Index>(omp_get_max_threads());
-  return std::clamp<Index>(fluid_.size() / (8 * threads), kMinSweepBlock, kMaxSweepBlock);
+  return bytes < kFuseAboveBytes ? 0 : kSweepBlock;
+}
+
+// Ranges of the fused sweep: one contiguous index range per thread, cut so that each
+// holds about the same work (fluid pairs, plus 4 per particle for the per-particle part).
+void Simulation::plan_jacobi_ranges() {
+  const Index n = fluid_.size();
+  const Index ranges = jacobi_ranges_ > 0 ? jacobi_ranges_ : static_cast<Index>(omp_get_max_threads());
+  auto work = [&](Index i) { return static_cast<double>(ff_.offset[i]) + 4.0 * i; };
+  const double total = work(n);
+  std::vector<Index>& range = scratch_.sweep_range;
+  range.assign(static_cast<size_t>(ranges) + 1, n);
+  range[0] = 0;
+  for (Index r = 1; r < ranges; ++r) {
+    const double target = total * r / ranges;
+    Index lo = range[r - 1], hi = n;  // first i in [lo, n] with work(i) >= target
+    while (lo < hi) {
+      const Index mid = lo + (hi - lo) / 2;
+      if (work(mid) < target)
+        lo = mid + 1;
+      else
+        hi = mid;
+    }
+    range[r] = lo;
+  }
+}
+
+// How many blocks after its own particle i's update must wait for in the fused sweep:
+// the block of its last fluid neighbour jmax (earlier blocks of the same range are
+// done by then). -1 (deferred) when a neighbour lies in another range, whose thread may
+// not have computed its acceleration yet, or more than kMaxSweepLag blocks ahead, by
+// when i's data have left the cache. jmin, jmax: i's smallest and largest neighbour
+// index (i itself when it has none).
+std::int8_t Simulation::sweep_lag_of(Index i, Index jmin, Index jmax, Index block) const {
+  const std::vector<Index>& range = scratch_.sweep_range;
+  const Index r = static_cast<Index>(std::upper_bound(range.begin(), range.end(), i) - range.begin()) - 1;
+  const Index begin = range[r], end = range[r + 1];
+  if (jmin < begin || jmax >= end) return -1;
+  const Index lag = (jmax - begin) / block - (i - begin) / block;
+  return lag <= kMaxSweepLag ? static_cast<std::int8_t>(std::max<Index>(lag, 0)) : std::int8_t(-1);
 }
 
 // One Jacobi iteration over all fluid particles: the accelerations of Eq. 24 from the
 // current pressures, then the updates of Eq. 20, 21 and 23; returns the sum of Eq. 23.
-// With block = 0, two plain passes. Otherwise fused by blocks: each block computes its
-// accelerations and at once updates its interior particles, whose pairs and
-// accelerations are still in cache; after all blocks are done, the deferred particles
-// (those with a neighbour in another block) are updated. The result is the same as
-// two full passes, bit for bit: an update reads only accelerations, which
-// are all computed before any deferred update and, for an interior particle, by its
-// own block.
+//
+// With block = 0, two plain passes. Otherwise fused: each thread sweeps its own range
+// (sweep_range) block by block, computing a block's accelerations and at once updating
+// the particles whose last fluid neighbour lies in that block, while their pairs and
+// accelerations are still in cache; after all ranges are done, the deferred particles
+// (see sweep_lag_of) are updated. The result is the same as two full passes, bit for
+// bit: an update reads only accelerations, and every one it reads is computed before
+// it, whatever the thread count. And no acceleration reads a pressure updated in the
+// same iteration: a particle updated early has all its neighbours in its own range and
+// in blocks already done (neighbour lists are symmetric).
 double Simulation::jacobi_sweep(Index block, const PressureTerms& t) {
   const Index n = fluid_.size();
   if (block == 0) {
@@ -632,24 +665,20 @@ double Simulation::jacobi_sweep(Index block, const PressureTerms& t) {
       return scratch_.err[i];
     });
   }
-  const Index blocks = (n + block - 1) / block;
+  const std::vector<Index>& range = scratch_.sweep_range;
+  const Index ranges = static_cast<Index>(range.size()) - 1;
   const Index nd = static_cast<Index>(scratch_.deferred.size());
   // Sum of Eq. 23 over fixed blocks of kReduceBlock particles, added in block order as
-  // in parallel_sum: the same bits whatever the sweep's blocks and threads.
+  // in parallel_sum: the same bits whatever the sweep's blocks, ranges and threads.
   const Index sum_blocks = (n + kReduceBlock - 1) / kReduceBlock;
   std::vector<double>& partial = scratch_.err_partial;
   partial.assign(static_cast<size_t>(sum_blocks), 0.0);
-  // Static schedules: each thread sweeps the same blocks in every iteration and finds
-  // them in its own cache.
+  // A thread may sweep several ranges one after the other (fewer threads than ranges):
+  // a range's early updates touch no particle of another range, so that is safe too.
 #pragma omp parallel if (n >= kParallelMin)
   {
 #pragma omp for schedule(static, 1)
-    for (Index b = 0; b < blocks; ++b) {
-      const Index begin = b * block, end = std::min(n, begin + block);
-      for (Index i = begin; i < end; ++i) scratch_.a_p[i] = pressure_acceleration_of(i, t);
-      for (Index i = begin; i < end; ++i)
-        if (scratch_.interior[i]) jacobi_update_of(i, t);
-    }
+    for (Index r = 0; r < ranges; ++r) sweep_range(range[r], range[r + 1], block, t);
 #pragma omp for schedule(static, kForChunk)
     for (Index k = 0; k < nd; ++k) jacobi_update_of(scratch_.deferred[k], t);
 #pragma omp for schedule(static, 1)
@@ -663,6 +692,23 @@ double Simulation::jacobi_sweep(Index block, const PressureTerms& t) {
   double total = 0.0;
   for (double sum : partial) total += sum;
   return total;
+}
+
+// One range of the fused sweep, blocks in order: block c's accelerations, then the
+// updates of the particles of blocks c - kMaxSweepLag .. c that waited for block c.
+void Simulation::sweep_range(Index begin, Index end, Index block, const PressureTerms& t) {
+  const std::vector<std::int8_t>& lag = scratch_.sweep_lag;
+  for (Index c = begin; c < end; c += block) {
+    const Index c_end = std::min(end, c + block);
+    for (Index i = c; i < c_end; ++i) scratch_.a_p[i] = pressure_acceleration_of(i, t);
+    for (int d = kMaxSweepLag; d >= 0; --d) {
+      const Index b0 = c - d * block;
+      if (b0 < begin) continue;
+      const Index b1 = std::min(c_end, b0 + block);
+      for (Index i = b0; i < b1; ++i)
+        if (lag[i] == d) jacobi_update_of(i, t);
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------------
@@ -702,26 +748,29 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
   const double vb_scale = boundary_velocity_in_source_ ? 1.0 : 0.0;
 
   const Index block = jacobi_block_size();
-  scratch_.interior.resize(n);
+  if (block > 0) {
+    plan_jacobi_ranges();
+    scratch_.sweep_lag.resize(n);
+  }
 
   // Source term s_i (Eq. 19), diagonal a_ii (Eq. 26), initial pressure p^(0) (Eq. 21),
-  // and whether all of i's fluid neighbours lie in i's block of the Jacobi sweep.
+  // and when the fused Jacobi sweep can update i (sweep_lag_of).
   parallel_for(n, [&](Index i) {
     const Vec2 vi = fluid_.v[i];
     const double rhoi = fluid_.rho[i];
-    const Index block_begin = block > 0 ? i / block * block : 0, block_end = block > 0 ? block_begin + block : n;
-    bool interior = true;
+    Index jmin = i, jmax = i;
     double div = 0.0, grad2 = 0.0;
     Vec2 sum_grad = Vec2::Zero();
     for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
       const Index j = ff_.j[k];
       const Vec2 gw = ff_.grad[k].cast<double>();
-      interior &= j >= block_begin && j < block_end;
+      jmin = std::min(jmin, j);
+      jmax = std::max(jmax, j);
       div += (vi - fluid_.v[j]).dot(gw);
       sum_grad += gw;
       grad2 += gw.squaredNorm();
     }
-    scratch_.interior[i] = interior;
+    if (block > 0) scratch_.sweep_lag[i] = sweep_lag_of(i, jmin, jmax, block);
     div *= mass_;
     sum_grad *= mass_;
     double div_b = 0.0;
@@ -746,7 +795,7 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
   scratch_.deferred.clear();
   if (block > 0)  // the plain passes defer nothing
     for (Index i = 0; i < n; ++i)
-      if (!scratch_.interior[i]) scratch_.deferred.push_back(i);
+      if (scratch_.sweep_lag[i] < 0) scratch_.deferred.push_back(i);
   scratch_.err.resize(n);
   scratch_.a_p.resize(n);
   int l = 0;

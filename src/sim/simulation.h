@@ -29,8 +29,12 @@ struct SolverScratch {
   std::vector<double> a_ii;     // diagonal (Eq. 22/26)
   std::vector<double> s;        // source term (Eq. 19)
   std::vector<double> err;      // predicted compression of Eq. 23 [%]
-  std::vector<std::uint8_t> interior;  // all fluid neighbours in the particle's sweep block
-  std::vector<Index> deferred;         // the particles that are not interior, ascending
+  // Fused Jacobi sweep (Simulation::jacobi_sweep): the bounds of its ranges (one per
+  // thread), for each particle the number of blocks after its own that its update
+  // waits for (-1: deferred until every range is done), and the deferred particles.
+  std::vector<Index> sweep_range;
+  std::vector<std::int8_t> sweep_lag;
+  std::vector<Index> deferred;         // ascending
   std::vector<double> err_partial;     // sums of err over blocks of kReduceBlock
   std::vector<double> p_over_rho2;   // p_i / rho_i^2 of fluid particles
   std::vector<double> pb_over_rho2;  // p_b / rho0^2 of boundary particles
@@ -96,9 +100,13 @@ class Simulation {
   // Off: the boundary velocity is left out of the IISPH source term (Eq. 16/19), as in
   // the thesis' own code; only to show that the term matters (tests).
   void set_boundary_velocity_in_source(bool on) { boundary_velocity_in_source_ = on; }
-  // Particles per block of the fused Jacobi sweep; 0: automatic, negative: two plain
-  // passes. Only speed depends on it; tests check that the bits do not.
-  void set_jacobi_block_size(Index particles) { jacobi_block_ = particles; }
+  // Particles per block of the fused Jacobi sweep (0: automatic, negative: two plain
+  // passes) and its number of ranges (0: one per thread). Only speed depends on them;
+  // tests check that the bits do not.
+  void set_jacobi_sweep(Index block, Index ranges = 0) {
+    jacobi_block_ = block;
+    jacobi_ranges_ = ranges;
+  }
   // Volumes of section 4.1 of every boundary particle from scratch at the current
   // positions (the reference for the incremental update of moving boundaries).
   std::vector<double> boundary_volumes_from_scratch() const;
@@ -134,7 +142,10 @@ class Simulation {
   Vec2 pressure_acceleration_of(Index i, const PressureTerms& t) const;  // Eq. 24 for one particle
   void jacobi_update_of(Index i, const PressureTerms& t);                 // Eq. 20, 21, 23 for one particle
   Index jacobi_block_size() const;
+  void plan_jacobi_ranges();                                  // scratch_.sweep_range
+  std::int8_t sweep_lag_of(Index i, Index jmin, Index jmax, Index block) const;
   double jacobi_sweep(Index block, const PressureTerms& t);  // Eq. 24, then 20, 21, 23 for all; returns the sum of Eq. 23
+  void sweep_range(Index begin, Index end, Index block, const PressureTerms& t);
 
   // Boundaries (chapter 4).
   void move_boundaries(double dt);            // scripted poses at time_ -> x, v, a of moving samples
@@ -156,7 +167,8 @@ class Simulation {
   SolverScratch scratch_;
   bool brute_force_ = false;
   bool boundary_velocity_in_source_ = true;
-  Index jacobi_block_ = 0;  // 0: jacobi_block_size() chooses
+  Index jacobi_block_ = 0;   // 0: jacobi_block_size() chooses
+  Index jacobi_ranges_ = 0;  // 0: one per thread
 
   // Moving boundaries: the samples on moving objects, and the static samples whose
   // kernel support held a moving sample at the last update (their volumes must be
