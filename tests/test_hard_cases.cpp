@@ -39,7 +39,7 @@ TEST_P(HardCaseShort, MeetsItsCriteria) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Suite, HardCaseShort,
-                         ::testing::Values("deep_column", "dam_break_cfl1", "dam_break_cfl1.5", "fast_rotor", "piston",
+                         ::testing::Values("deep_column", "dam_break_cfl1", "dam_break_130k", "dam_break_cfl1.5", "fast_rotor", "piston",
                                            "jet", "one_layer_walls", "sparse_walls", "sparse_walls_2x",
                                            "overlap_spawn"),
                          [](const ::testing::TestParamInfo<std::string>& info) {
