@@ -234,6 +234,25 @@ TEST(Experiments, ScalingRunsEachWidthAtTheToleranceAndWithFixedIterations) {
   EXPECT_NE(read_text(dir.work() / "out/scaling/summary.md").find("with fixed iterations"), std::string::npos);
 }
 
+TEST(Experiments, ParallelTimesTheSolverAndTheMachinesLoopsForEachThreadCount) {
+  const CaseDir dir;
+  const auto r = run_sluice(dir, experiment_args({"parallel"}));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto eff = analysis::read_csv_table((dir.work() / "out/parallel/efficiency.csv").string());
+  ASSERT_GE(eff.rows.size(), 2u);  // 1 and 2 threads (and all cores where there are more)
+  EXPECT_EQ(value(eff, 0, "threads"), 1);
+  EXPECT_EQ(value(eff, 0, "speedup"), 1);
+  EXPECT_GT(value(eff, 1, "ms_per_step"), 0);
+  const auto m = analysis::read_csv_table((dir.work() / "out/parallel/machine.csv").string());
+  ASSERT_EQ(m.rows.size(), 2 * eff.rows.size());  // the memory stream and the arithmetic loop per thread count
+  const auto col = [&](const std::string& name) { return static_cast<size_t>(m.column(name)); };
+  EXPECT_EQ(m.rows[0][col("loop")], "memory stream");
+  EXPECT_EQ(m.rows[1][col("loop")], "arithmetic");
+  EXPECT_GT(std::stod(m.rows[0][col("gb_per_s")]), 0.0);
+  for (const auto& row : m.rows) EXPECT_GT(std::stod(row[col("ms")]), 0.0);
+  EXPECT_NE(read_text(dir.work() / "out/parallel/summary.md").find("The machine in the same rounds"), std::string::npos);
+}
+
 TEST(Experiments, UnknownNameAndBadFiguresInputAreOneLineErrors) {
   const CaseDir dir;
   auto r = run_sluice(dir, {"experiment", "figure-99"});

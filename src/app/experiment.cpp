@@ -20,6 +20,7 @@
 
 #include "analysis/csv.h"
 #include "analysis/figures.h"
+#include "analysis/machine.h"
 #include "analysis/sweep.h"
 #include "app/commands.h"
 #include "app/run.h"
@@ -568,16 +569,39 @@ void parallel(Context& c) {
                                 return s;
                               }());
   // Speed-up: the median over the rounds of (1-thread time / t-thread time) within a round.
+  // Each round also times the machine's reference loops (analysis/machine.h) with the same
+  // thread counts, so that the solver's speed-up can be read against what the machine
+  // gives a memory-bound and an arithmetic loop in the same spell of load.
   Csv eff("scene,particles,threads,ms_per_step,speedup,efficiency,speedup_min,speedup_max");
-  std::string eff_text;
+  Csv machine("loop,threads,ms,speedup,speedup_min,speedup_max,gb_per_s");
+  std::string eff_text, machine_text;
   SweepRun r;
   const int rounds = c.quick ? 1 : 9;  // the ratio of one round varies by ±20 % on a shared 2-core VM
-  const auto ms = interleaved_ms_per_step(big, threads, rounds, &r);
-  for (std::size_t t = 0; t < threads.size(); ++t) {
+  const std::size_t stream_bytes = c.quick ? (std::size_t(8) << 20) : (std::size_t(64) << 20);
+  const int stream_passes = c.quick ? 2 : 10;
+  const long compute_iterations = c.quick ? 1000000L : 100000000L;
+  analysis::StreamArrays arrays(stream_bytes);
+  std::vector<std::vector<double>> ms(threads.size()), stream(threads.size()), compute(threads.size());
+  double checksum = 0.0;
+  for (int k = 0; k < rounds; ++k)
+    for (std::size_t t = 0; t < threads.size(); ++t) {
+      omp_set_num_threads(threads[t]);
+      r = analysis::run_sweep_point(big, {});
+      ms[t].push_back(r.ms_phase[4]);
+      stream[t].push_back(analysis::stream_triad_ms(arrays, 0.5, threads[t], stream_passes));
+      compute[t].push_back(analysis::compute_ms(threads[t], compute_iterations, &checksum));
+    }
+  struct Speedup {
+    double median, lo, hi;
+  };
+  auto speedup_of = [&](const std::vector<std::vector<double>>& times, std::size_t t) {
     std::vector<double> ratio;
-    for (int k = 0; k < rounds; ++k) ratio.push_back(ms[0][static_cast<std::size_t>(k)] / ms[t][static_cast<std::size_t>(k)]);
-    const double speedup = median(ratio);
-    const double lo = *std::min_element(ratio.begin(), ratio.end()), hi = *std::max_element(ratio.begin(), ratio.end());
+    for (int k = 0; k < rounds; ++k) ratio.push_back(times[0][static_cast<std::size_t>(k)] / times[t][static_cast<std::size_t>(k)]);
+    return Speedup{median(ratio), *std::min_element(ratio.begin(), ratio.end()), *std::max_element(ratio.begin(), ratio.end())};
+  };
+  for (std::size_t t = 0; t < threads.size(); ++t) {
+    const Speedup sp = speedup_of(ms, t);
+    const double speedup = sp.median, lo = sp.lo, hi = sp.hi;
     eff.row({big.name, std::to_string(r.particles), std::to_string(threads[t]), fmt(median(ms[t]), 5), fmt(speedup, 4),
              fmt(speedup / threads[t], 4), fmt(lo, 4), fmt(hi, 4)});
     std::printf("  %s %ld particles, %d threads: %.2f ms/step, speed-up %.3f (rounds %.3f to %.3f), efficiency %.1f %%\n",
@@ -585,6 +609,19 @@ void parallel(Context& c) {
     if (threads[t] > 1)
       eff_text += std::to_string(threads[t]) + " threads: speed-up " + fmt(speedup, 3) + "x (rounds " + fmt(lo, 3) + " to " +
                   fmt(hi, 3) + "), efficiency " + fmt(100 * speedup / threads[t], 3) + " %. ";
+    const double stream_gb = 3.0 * static_cast<double>(stream_bytes) * stream_passes / (median(stream[t]) * 1e6);
+    const Speedup ss = speedup_of(stream, t), sc = speedup_of(compute, t);
+    machine.row({"memory stream", std::to_string(threads[t]), fmt(median(stream[t]), 5), fmt(ss.median, 4), fmt(ss.lo, 4),
+                 fmt(ss.hi, 4), fmt(stream_gb, 4)});
+    machine.row({"arithmetic", std::to_string(threads[t]), fmt(median(compute[t]), 5), fmt(sc.median, 4), fmt(sc.lo, 4),
+                 fmt(sc.hi, 4), ""});
+    std::printf("  machine, %d threads: memory stream %.1f GB/s, speed-up %.3f; arithmetic speed-up %.3f\n", threads[t],
+                stream_gb, ss.median, sc.median);
+    if (threads[t] > 1)
+      machine_text += "The machine in the same rounds, " + std::to_string(threads[t]) + " threads: a memory stream (a = b + s c over three " +
+                      std::to_string(stream_bytes >> 20) + " MB arrays) speeds up " + fmt(ss.median, 3) + "x (rounds " + fmt(ss.lo, 3) +
+                      " to " + fmt(ss.hi, 3) + "), an arithmetic loop " + fmt(sc.median, 3) + "x (rounds " + fmt(sc.lo, 3) + " to " +
+                      fmt(sc.hi, 3) + "). ";
   }
   eff.write(c.dir / "efficiency.csv");
   omp_set_num_threads(restore);
@@ -592,8 +629,10 @@ void parallel(Context& c) {
           std::to_string(available_threads()) + " cores, load average " + fmt(start_load, 3) +
           " at the start and " + fmt(load_average(), 3) + " at the end (timings are only meaningful on an idle machine). "
           "Compare with the thesis' Figure 11. Target: at least 1.8x (90 %) on 2 threads for the 130k breaking dam. " +
-          eff_text + "\n\n";
+          eff_text + machine_text + "\n\n";
+  machine.write(c.dir / "machine.csv");
   c.table(c.dir / "efficiency.csv", {});
+  c.table(c.dir / "machine.csv", {});
   c.table(c.dir / "column_threads.csv", {});
   FigureSpec a = spec(FigureKind::Series, c.dir / "column_threads.csv", "particles", {"ms_per_step"}, "time_vs_particles.png");
   a.group = "threads";
