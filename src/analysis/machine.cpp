@@ -50,7 +50,8 @@ double compute_ms(int threads, long iterations, double* checksum) {
     double x[8];
     for (int k = 0; k < 8; ++k) x[k] = 1.0 + 1e-3 * k + omp_get_thread_num();
     const double m = 0.9999999, add = 1e-9;
-    for (long it = 0; it < iterations; ++it)
+    const long own = iterations / threads;
+    for (long it = 0; it < own; ++it)
       for (int k = 0; k < 8; ++k) x[k] = x[k] * m + add;
     for (int k = 0; k < 8; ++k) total += x[k];
   }

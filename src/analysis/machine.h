@@ -19,10 +19,10 @@ struct StreamArrays {
 // (static schedule; the arrays are first touched by the same schedule).
 double stream_triad_ms(StreamArrays& arrays, double s, int threads, int passes);
 
-// Wall milliseconds of `iterations` rounds of eight independent multiply-add chains on
-// each of `threads` threads (the same work per thread, so that t threads on t free
-// cores take as long as one). *checksum receives a sum of the chains' final values (it
-// keeps the compiler from dropping the loop).
+// Wall milliseconds of `iterations` rounds of eight independent multiply-add chains,
+// shared out among `threads` threads (iterations / threads each, so that t threads on t
+// free cores take 1/t of one thread's time). *checksum receives the sum of the chains'
+// final values (it keeps the compiler from dropping the loop).
 double compute_ms(int threads, long iterations, double* checksum);
 
 }  // namespace sluice::analysis

@@ -6,20 +6,20 @@ set key top left box opaque
 set xlabel "fluid particles" noenhanced
 set ylabel "wall time per step [ms]" noenhanced
 $s0 << EOD
-1250 0.97688
-2500 2.0484
-5000 8.617
-7500 15.266
-10000 24.683
-12000 24.147
+1250 0.96529
+2500 2.7066
+5000 7.963
+7500 10.951
+10000 21.176
+12000 27.601
 EOD
 $s1 << EOD
-1250 0.99899
-2500 1.3476
-5000 5.0408
-7500 8.7598
-10000 13.304
-12000 21.93
+1250 0.96228
+2500 1.6224
+5000 4.8418
+7500 7.8427
+10000 19.846
+12000 23.61
 EOD
 plot $s0 using 1:2 with linespoints pt 7 ps 1.2 lw 2 lc rgb "#1f77b4" title "threads = 1" noenhanced, \
      $s1 using 1:2 with linespoints pt 7 ps 1.2 lw 2 lc rgb "#d62728" title "threads = 2" noenhanced
