@@ -698,13 +698,13 @@ double Simulation::jacobi_sweep(Index block, const PressureTerms& t) {
 // updates of the particles of blocks c - kMaxSweepLag .. c that waited for block c.
 void Simulation::sweep_range(Index begin, Index end, Index block, const PressureTerms& t) {
   const std::vector<std::int8_t>& lag = scratch_.sweep_lag;
-  for (Index c = begin; c < end; c += block) {
-    const Index c_end = std::min(end, c + block);
+  // (Bounds computed so that no sum exceeds end: a block may be as large as Index allows.)
+  for (Index c = begin, c_end = begin; c < end; c = c_end) {
+    c_end = end - c > block ? c + block : end;
     for (Index i = c; i < c_end; ++i) scratch_.a_p[i] = pressure_acceleration_of(i, t);
     for (int d = kMaxSweepLag; d >= 0; --d) {
-      const Index b0 = c - d * block;
-      if (b0 < begin) continue;
-      const Index b1 = std::min(c_end, b0 + block);
+      if (static_cast<std::int64_t>(d) * block > c - begin) continue;  // d blocks back is before the range
+      const Index b0 = c - d * block, b1 = d == 0 ? c_end : b0 + block;
       for (Index i = b0; i < b1; ++i)
         if (lag[i] == d) jacobi_update_of(i, t);
     }
