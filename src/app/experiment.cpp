@@ -514,9 +514,12 @@ int available_threads() { return std::max(1, omp_get_num_procs()); }
 
 // Wall milliseconds per step of `scene` for each thread count, `repeat` rounds with the
 // thread counts interleaved (1, 2, 1, 2, ...), so that a slow spell of a shared machine
-// hits every thread count alike. ms[t][r]: thread count t, round r.
+// hits every thread count alike. ms[t][r]: thread count t, round r. after_run(t), when
+// given, runs right after each run, still with threads[t] threads (reference loops timed
+// in the same spell of load).
 std::vector<std::vector<double>> interleaved_ms_per_step(const Scene& scene, const std::vector<int>& threads, int repeat,
-                                                         SweepRun* last = nullptr) {
+                                                         SweepRun* last = nullptr,
+                                                         const std::function<void(std::size_t)>& after_run = {}) {
   std::vector<std::vector<double>> ms(threads.size());
   for (int r = 0; r < repeat; ++r)
     for (std::size_t t = 0; t < threads.size(); ++t) {
@@ -524,6 +527,7 @@ std::vector<std::vector<double>> interleaved_ms_per_step(const Scene& scene, con
       const SweepRun run = analysis::run_sweep_point(scene, {});
       ms[t].push_back(run.ms_phase[4]);
       if (last) *last = run;
+      if (after_run) after_run(t);
     }
   return ms;
 }
@@ -533,9 +537,10 @@ double median(std::vector<double> v) {
   return v.empty() ? 0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-// Median wall milliseconds per step of `repeat` runs with `threads` threads.
-double median_ms_per_step(const Scene& scene, int threads, int repeat, SweepRun* last = nullptr) {
-  return median(interleaved_ms_per_step(scene, {threads}, repeat, last)[0]);
+double mean(const std::vector<double>& v) {
+  double sum = 0.0;
+  for (double x : v) sum += x;
+  return v.empty() ? 0 : sum / static_cast<double>(v.size());
 }
 
 void parallel(Context& c) {
@@ -581,16 +586,12 @@ void parallel(Context& c) {
   const int stream_passes = c.quick ? 2 : 10;
   const long compute_iterations = c.quick ? 1000000L : 100000000L;
   analysis::StreamArrays arrays(stream_bytes);
-  std::vector<std::vector<double>> ms(threads.size()), stream(threads.size()), compute(threads.size());
+  std::vector<std::vector<double>> stream(threads.size()), compute(threads.size());
   double checksum = 0.0;
-  for (int k = 0; k < rounds; ++k)
-    for (std::size_t t = 0; t < threads.size(); ++t) {
-      omp_set_num_threads(threads[t]);
-      r = analysis::run_sweep_point(big, {});
-      ms[t].push_back(r.ms_phase[4]);
-      stream[t].push_back(analysis::stream_triad_ms(arrays, 0.5, threads[t], stream_passes));
-      compute[t].push_back(analysis::compute_ms(threads[t], compute_iterations, &checksum));
-    }
+  const auto ms = interleaved_ms_per_step(big, threads, rounds, &r, [&](std::size_t t) {
+    stream[t].push_back(analysis::stream_triad_ms(arrays, 0.5, threads[t], stream_passes));
+    compute[t].push_back(analysis::compute_ms(threads[t], compute_iterations, &checksum));
+  });
   struct Speedup {
     double median, lo, hi;
   };
@@ -658,25 +659,42 @@ void scaling(Context& c) {
   const double start_load = load_average();
   Csv csv("particles,width,steps,avg_iterations,ms_per_step,us_per_particle_step,ratio_to_first,us_neighbors_per_particle,"
           "us_pressure_per_particle_iteration,fixed_iterations,us_per_particle_step_fixed_iterations,ratio_to_first_fixed_iterations");
-  double first = 0, first_fixed = 0, lo = HUGE_VAL, hi = 0, lo_fixed = HUGE_VAL, hi_fixed = 0;
+  // Every width with and without fixed iterations, the runs of one round in a row and the
+  // rounds repeated, so that a slow spell of a shared machine hits every width alike.
+  // Small widths repeat their run within a round (the round's figure is the mean per
+  // step over its repeats): 20 steps of 10k particles take tens of milliseconds.
+  struct Width {
+    long n;
+    double width;
+    Scene scene, fixed;
+    int repeat;
+    std::vector<double> ms_natural, ms_fixed;
+    SweepRun r, rf;
+  };
+  std::vector<Width> widths;
   for (long n : counts) {
     const double width = static_cast<double>(n) / 50.0 * 0.01;
     auto own = column_height(width, 0.5);
     own.insert(own.end(), {"time.dt=5e-4", "time.duration=0.01"});
-    const Scene scene = c.load("column.json", own);
+    Scene scene = c.load("column.json", own);
     own.insert(own.end(), {"solver.min_iterations=" + std::to_string(kFixedIterations),
                            "solver.max_iterations=" + std::to_string(kFixedIterations)});
-    const Scene fixed = c.load("column.json", own);
-    // The two variants interleaved, round by round (a slow spell hits both).
-    const int rounds = c.quick ? 1 : n >= 300000 ? 3 : 5;
-    std::vector<double> ms_natural, ms_fixed;
-    SweepRun r, rf;
-    for (int k = 0; k < rounds; ++k) {
-      ms_natural.push_back(median_ms_per_step(scene, omp_get_max_threads(), 1, &r));
-      ms_fixed.push_back(median_ms_per_step(fixed, omp_get_max_threads(), 1, &rf));
+    Scene fixed = c.load("column.json", own);
+    const int repeat = c.quick ? 1 : static_cast<int>(std::max(1L, 300000L / n));
+    widths.push_back({n, width, std::move(scene), std::move(fixed), repeat, {}, {}, {}, {}});
+  }
+  const int rounds = c.quick ? 1 : 5;
+  const int threads = omp_get_max_threads();
+  for (int k = 0; k < rounds; ++k)
+    for (Width& w : widths) {
+      w.ms_natural.push_back(mean(interleaved_ms_per_step(w.scene, {threads}, w.repeat, &w.r)[0]));
+      w.ms_fixed.push_back(mean(interleaved_ms_per_step(w.fixed, {threads}, w.repeat, &w.rf)[0]));
     }
+  double first = 0, first_fixed = 0, lo = HUGE_VAL, hi = 0, lo_fixed = HUGE_VAL, hi_fixed = 0;
+  for (const Width& w : widths) {
+    const SweepRun &r = w.r, &rf = w.rf;
     const double np = static_cast<double>(r.particles);
-    const double us = 1000.0 * median(ms_natural) / np, us_fixed = 1000.0 * median(ms_fixed) / np;
+    const double us = 1000.0 * median(w.ms_natural) / np, us_fixed = 1000.0 * median(w.ms_fixed) / np;
     if (first == 0) first = us, first_fixed = us_fixed;
     lo = std::min(lo, us), hi = std::max(hi, us);
     lo_fixed = std::min(lo_fixed, us_fixed), hi_fixed = std::max(hi_fixed, us_fixed);
@@ -684,16 +702,17 @@ void scaling(Context& c) {
                 us, r.avg_iterations, us_fixed, kFixedIterations);
     // The split of the last fixed-iteration run: the neighbour phase per particle, and the
     // pressure solve per particle and iteration.
-    csv.row({std::to_string(r.particles), fmt(width, 5), std::to_string(r.steps), fmt(r.avg_iterations, 4),
-             fmt(median(ms_natural), 5), fmt(us, 5), fmt(us / first, 4), fmt(1000.0 * rf.ms_phase[0] / np, 4),
+    csv.row({std::to_string(r.particles), fmt(w.width, 5), std::to_string(r.steps), fmt(r.avg_iterations, 4),
+             fmt(median(w.ms_natural), 5), fmt(us, 5), fmt(us / first, 4), fmt(1000.0 * rf.ms_phase[0] / np, 4),
              fmt(1000.0 * rf.ms_phase[2] / (np * kFixedIterations), 4), fmt(rf.avg_iterations, 4), fmt(us_fixed, 5),
              fmt(us_fixed / first_fixed, 4)});
   }
   csv.write(c.dir / "scaling.csv");
   c.md += "A layer 0.5 m deep widened from " + std::to_string(counts.front()) + " to " + std::to_string(counts.back()) +
           " particles, 20 steps of 0.5 ms, at the solver's tolerance and with " + std::to_string(kFixedIterations) +
-          " fixed Jacobi iterations (the same work per particle at every width), interleaved, " +
-          (c.quick ? "1 round" : "median of 5 rounds (3 from 300k on)") + ", " + std::to_string(omp_get_max_threads()) +
+          " fixed Jacobi iterations (the same work per particle at every width); " +
+          (c.quick ? "1 round" : "median of 5 rounds, each round running every width and variant in turn (widths under 300k "
+                                 "repeat their run 300k / n times within a round)") + ", " + std::to_string(omp_get_max_threads()) +
           " threads, load average " + fmt(start_load, 3) +
           " at the start. Target: the time per particle-step within 25 % over the range (O(n)). Measured: largest / "
           "smallest = " + fmt(hi / lo, 3) + " at the tolerance (iterations grow with the width), " +
