@@ -19,10 +19,10 @@ constexpr Index kSweepBlock = 16384;
 // An update waits for at most this many blocks after its own; particles with a
 // neighbour further ahead are deferred.
 constexpr int kMaxSweepLag = 2;
-// The fused sweep is used when the iteration's arrays exceed this many bytes, the L3 of
-// the machine it was measured on (see jacobi_block_size). Elsewhere the crossover moves
-// with the cache; either way the bits are the same.
-constexpr double kFuseAboveBytes = 32.0 * 1024 * 1024;
+// The fused sweep is used when the iteration's arrays exceed this many bytes, three
+// quarters of the 32 MB L3 of the machine it was measured on (see jacobi_block_size).
+// Elsewhere the crossover moves with the cache; either way the bits are the same.
+constexpr double kFuseAboveBytes = 24.0 * 1024 * 1024;
 
 // Warm start p^(0) = 0.5 p(t - dt), the choice of [Ihm+14a]. A factor of 1 keeps the
 // part of the previous pressure that the operator A barely sees (lattice-scale,
@@ -591,11 +591,13 @@ void Simulation::compute_pressure_acceleration() {
   scratch_.err[i] = std::max(t.err_scale * (ap - si), 0.0);
 }
 
-// The fused Jacobi sweep pays only when the solver's arrays do not fit in the last-level
-// cache: in cache, the two plain passes are faster (pressure phase, fused against plain,
-// medians of 3 to 5 interleaved runs on 2 threads: the 0.5 m layer at 10k +7 to 11 %, at
-// 30k and 100k (about 31 MB) +10 %, at 1M -17 %; the 130k dam break (about 41 MB)
-// -11 %). Returns the block size, 0 for the two plain passes.
+// The fused Jacobi sweep pays only when the solver's arrays crowd the last-level cache;
+// well inside it, the two plain passes are as fast or faster. Pressure phase of the
+// 0.5 m layer (`sluice bench` on the widened column, 20 steps), fused against plain,
+// median of the per-round ratios of 7 to 9 interleaved rounds, with the sweep in ranges:
+// 2 threads: 10k (about 3 MB) 1.07, 30k (9 MB) 0.97, 60k (19 MB) 0.98, 100k (31 MB) 0.89
+// and 0.85; 1 thread: 30k 1.05, 100k 0.80. (The 1M layer and the 130k dam break, 41 MB,
+// gain more: README, "Speed".) Returns the block size, 0 for the two plain passes.
 Index Simulation::jacobi_block_size() const {
   if (jacobi_block_ != 0) return std::max<Index>(jacobi_block_, 0);
   // Bytes the iteration streams: 12 per fluid pair (index and float gradient) and about
