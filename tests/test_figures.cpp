@@ -98,6 +98,24 @@ TEST(Figures, ScriptCarriesItsDataMeansAndFormat) {
   EXPECT_NE(analysis::figure_script(s, series).find("pdfcairo"), std::string::npos);
 }
 
+TEST(Figures, LegendGoesWhereItCoversNoData) {
+  const CaseDir dir;
+  const auto t = table_of(dir, "scaling.csv", "particles,us_per_particle_step,us_neighbors_per_particle,a,b,c\n1,2,3,4,5,6\n");
+  FigureSpec s;
+  s.inputs = {t.path};
+  s.x = "particles";
+  s.y = {"us_per_particle_step", "us_neighbors_per_particle"};  // two long labels: room above the data
+  EXPECT_NE(analysis::figure_script(s, analysis::figure_series(s, {t})).find("set offsets 0, 0, graph 0.17"), std::string::npos);
+  s.y = {"a", "b"};  // two short ones stay inside
+  std::string gp = analysis::figure_script(s, analysis::figure_series(s, {t}));
+  EXPECT_EQ(gp.find("set offsets"), std::string::npos);
+  EXPECT_EQ(gp.find("set key outside"), std::string::npos);
+  s.y = {"a", "b", "c", "us_per_particle_step", "us_neighbors_per_particle"};  // many: beside it
+  gp = analysis::figure_script(s, analysis::figure_series(s, {t}));
+  EXPECT_NE(gp.find("set key outside right top"), std::string::npos);
+  EXPECT_EQ(gp.find("set offsets"), std::string::npos);
+}
+
 TEST(Figures, BadInputNamesTheFileTheColumnAndWhatIsAllowed) {
   const CaseDir dir;
   const auto t = table_of(dir, "stats.csv", "time,iterations\n0.1,4\n");

@@ -273,6 +273,7 @@ std::string axis_label(const std::string& c) {
       {"us_per_particle_step", "wall time per particle-step [µs]"},
       {"us_neighbors_per_particle", "neighbour search per particle-step [µs]"},
       {"us_pressure_per_particle_iteration", "pressure solve per particle and iteration [µs]"},
+      {"us_per_particle_step_fixed_iterations", "wall time per particle-step, fixed iterations [µs]"},
       {"stiffness", "stiffness k [Pa m]"},
       {"pressure_s", "pressure solve [s]"},
       {"neighbors_s", "neighbour search [s]"},
@@ -364,8 +365,18 @@ std::string figure_script(const FigureSpec& spec, const std::vector<FigureSeries
   if (!yl.empty()) s += "set ylabel " + gnuplot_quote(yl) + " noenhanced\n";
   if (spec.logx) s += "set logscale x\n";
   if (spec.logy) s += "set logscale y\n";
-  // Many legend entries would cover the data: put the key beside the plot.
-  if (spec.kind != FigureKind::Box && series.size() * (spec.mean ? 2 : 1) > 4) s += "set key outside right top\n";
+  // Many legend entries would cover the data: put the key beside the plot. A few long
+  // ones span the plot's width: leave room above the data for them (the key's height,
+  // about 0.055 of the plot per entry plus its frame, as a share of the data's range).
+  std::size_t longest = 0;
+  for (const FigureSeries& f : series) longest = std::max(longest, f.label.size());
+  const std::size_t entries = series.size() * (spec.mean ? 2 : 1);
+  if (spec.kind != FigureKind::Box && entries > 4) {
+    s += "set key outside right top\n";
+  } else if (spec.kind != FigureKind::Box && entries > 1 && longest > 32) {
+    const double key = 0.055 * static_cast<double>(entries) + 0.04;
+    s += "set offsets 0, 0, graph " + num(key / (1.0 - key)) + ", 0\n";
+  }
   switch (spec.kind) {
     case FigureKind::Series: return s + series_plot(spec, series);
     case FigureKind::Box: return s + box_plot(series);
