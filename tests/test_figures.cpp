@@ -269,6 +269,13 @@ TEST(Experiments, ParallelTimesTheSolverAndTheMachinesLoopsForEachThreadCount) {
   EXPECT_GT(std::stod(m.rows[0][col("gb_per_s")]), 0.0);
   for (const auto& row : m.rows) EXPECT_GT(std::stod(row[col("ms")]), 0.0);
   EXPECT_NE(read_text(dir.work() / "out/parallel/summary.md").find("The machine in the same rounds"), std::string::npos);
+  // Figure 11's columns: a row per thread count, the speed-up of one thread against itself is 1.
+  const auto cols = analysis::read_csv_table((dir.work() / "out/parallel/column_threads.csv").string());
+  ASSERT_EQ(cols.rows.size(), eff.rows.size());  // the quick run has one column
+  EXPECT_EQ(value(cols, 0, "threads"), 1);
+  EXPECT_EQ(value(cols, 0, "speedup"), 1);
+  EXPECT_GT(value(cols, 1, "speedup"), 0);
+  EXPECT_EQ(value(cols, 0, "avg_iterations"), value(cols, 1, "avg_iterations"));  // the same bits for any thread count
 }
 
 TEST(Experiments, UnknownNameAndBadFiguresInputAreOneLineErrors) {

@@ -6,20 +6,20 @@ set key top left box opaque
 set xlabel "fluid particles" noenhanced
 set ylabel "wall time per step [ms]" noenhanced
 $s0 << EOD
-1250 0.9842
-2500 2.7621
-5000 6.3513
-7500 15.581
-10000 17.662
-12000 30.334
+1250 0.71152
+2500 2.124
+5000 6.5263
+7500 13.339
+10000 18.521
+12000 23.521
 EOD
 $s1 << EOD
-1250 0.98078
-2500 1.5937
-5000 4.1306
-7500 12.245
-10000 14.161
-12000 16.657
+1250 0.75786
+2500 1.5276
+5000 4.5118
+7500 7.984
+10000 13.571
+12000 16.851
 EOD
 plot $s0 using 1:2 with linespoints pt 7 ps 1.2 lw 2 lc rgb "#1f77b4" title "threads = 1" noenhanced, \
      $s1 using 1:2 with linespoints pt 7 ps 1.2 lw 2 lc rgb "#d62728" title "threads = 2" noenhanced
