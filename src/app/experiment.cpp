@@ -696,7 +696,6 @@ void scaling(Context& c) {
   // Small widths repeat their run within a round (the round's figure is the mean per
   // step over its repeats): 20 steps of 10k particles take tens of milliseconds.
   struct Width {
-    long n;
     double width;
     Scene scene, fixed;
     int repeat;
@@ -713,7 +712,7 @@ void scaling(Context& c) {
                            "solver.max_iterations=" + std::to_string(kFixedIterations)});
     Scene fixed = c.load("column.json", own);
     const int repeat = c.quick ? 1 : static_cast<int>(std::max(1L, 300000L / n));
-    widths.push_back({n, width, std::move(scene), std::move(fixed), repeat, {}, {}, {}, {}});
+    widths.push_back({width, std::move(scene), std::move(fixed), repeat, {}, {}, {}, {}});
   }
   const int rounds = c.quick ? 1 : 5;
   const int threads = omp_get_max_threads();
