@@ -270,8 +270,9 @@ TEST(Checkpoint, RefusedFilesNameTheFileAndTheProblem) {
   expect_refusal("", "is truncated");
 
   std::string version = good;
-  version[8] = 2;  // u32 version, little-endian
-  expect_refusal(version, "has format version 2; this sluice reads version 1");
+  version[8] = static_cast<char>(kCheckpointVersion + 1);  // u32 version, little-endian
+  expect_refusal(version, "has format version " + std::to_string(kCheckpointVersion + 1) + "; this sluice reads version " +
+                              std::to_string(kCheckpointVersion));
 
   std::string magic = good;
   magic.replace(0, 8, "PNG\r\n\x1a\n\0", 8);

@@ -272,8 +272,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(DeterminismCase{"iisph", R"("type": "iisph")", 2e-3, 40},
                       DeterminismCase{"iisph_viscosity_mirroring",
                                       R"("type": "iisph", "viscosity": 0.01, "boundary_pressure": "mirroring")", 2e-3, 40},
-                      DeterminismCase{"wcsph", R"("type": "wcsph", "stiffness": 5e5)", 2e-4, 60},
-                      DeterminismCase{"wcsph_viscosity", R"("type": "wcsph", "stiffness": 5e5, "viscosity": 0.01)", 2e-4,
+                      DeterminismCase{"wcsph", R"("type": "wcsph", "stiffness": 5e5)", 1.5e-4, 60},
+                      DeterminismCase{"wcsph_viscosity", R"("type": "wcsph", "stiffness": 5e5, "viscosity": 0.01)", 1.5e-4,
                                       60}),
     [](const ::testing::TestParamInfo<DeterminismCase>& info) { return info.param.name; });
 
@@ -286,7 +286,7 @@ TEST(Physics, JacobiSweepBlocksDoNotChangeBits) {
   struct Sweep {
     Index block, ranges;
   };
-  for (const char* method : {"extrapolation", "mirroring", "zero"}) {
+  for (const char* method : {"solved", "extrapolation", "mirroring", "zero"}) {
     const Scene scene = scene_from_json(R"({
       "spacing": 0.01,
       "solver": {"type": "iisph", "boundary_pressure": ")" + std::string(method) + R"("},
@@ -380,7 +380,9 @@ TEST(Physics, AdaptiveStepLandsOnFrames) {
 // --- instability detector ------------------------------------------------------------------
 
 TEST(Physics, InstabilityIsDetected) {
-  const Scene scene = scene_from_json(kSmallDamBreak, {"solver.type=wcsph", "solver.stiffness=1e7", "time.dt=5e-3"});
+  // A WCSPH fluid far too soft for its column (c = 1 m/s): it compresses past the
+  // detector's 50 % limit. (A step beyond the acoustic limit is refused at load.)
+  const Scene scene = scene_from_json(kSmallDamBreak, {"solver.type=wcsph", "solver.stiffness=1e3", "time.dt=5e-3"});
   Simulation sim(scene);
   std::string message;
   int steps = 0;
@@ -395,6 +397,7 @@ TEST(Physics, InstabilityIsDetected) {
   const bool has_cause = message.find("non-finite") != std::string::npos ||
                          message.find("left the scene") != std::string::npos ||
                          message.find("compression error") != std::string::npos ||
+                        message.find("past a wall") != std::string::npos ||
                          message.find("dt_min") != std::string::npos;
   EXPECT_TRUE(has_cause) << message;
 }

@@ -57,7 +57,7 @@ TEST(SceneFiles, ShippedScenesLoad) {
     EXPECT_EQ(s.fluid_x.size(), count);
     EXPECT_EQ(s.fluid_v.size(), count);
     EXPECT_EQ(s.fluid_removed, 0);
-    EXPECT_EQ(s.solver.boundary_pressure, BoundaryPressure::Extrapolation);
+    EXPECT_EQ(s.solver.boundary_pressure, BoundaryPressure::Solved);  // the default
     EXPECT_EQ(s.boundary_object.size(), s.boundary_x.size());
     ASSERT_EQ(s.objects.size(), 1u);
     EXPECT_EQ(s.objects[0].count, static_cast<Index>(s.boundary_x.size()));
@@ -166,7 +166,7 @@ TEST(SceneErrors, BadInputsNameFilePathAndAllowed) {
       {"unknown top-level key", scene_with(R"("fluids": 1,)"),
        {"scenes/x.json: /fluids: unknown key; allowed keys: name, spacing, solver, time, stability, output, render, fluid, boundaries"}},
       {"unknown nested key", scene_with(R"("solver": {"tolernce": 0.05},)"),
-       {"scenes/x.json: /solver/tolernce: unknown key; allowed keys: type, rest_density, gravity, viscosity, tolerance,"}},
+       {"scenes/x.json: /solver/tolernce: unknown key; allowed keys: type, rest_density, gravity, viscosity, artificial_viscosity, sound_speed, tolerance,"}},
       {"unknown boundary key", scene_with(R"("boundaries": [{"shape": "circle", "center": [0, 0], "radius": 1, "lid": true}],)"),
        {"/boundaries/0/lid: unknown key; allowed keys: shape, name, center, radius, spacing, fluid_side, layers, layer_spacing"}},
       {"wrong type vec2", scene_with("", R"([{"shape": "rectangle", "min": "abc", "max": [1, 1]}])"),
@@ -188,7 +188,7 @@ TEST(SceneErrors, BadInputsNameFilePathAndAllowed) {
       {"cfl above 2", scene_with(R"("time": {"cfl": 3},)"), {"/time/cfl: value 3 is out of range; must be in (0, 2]"}},
       {"dt_min above dt_max", scene_with(R"("time": {"dt_min": 1e-2},)"), {"/time/dt_min:", "need 0 < dt_min <= dt_max"}},
       {"bad enum", scene_with(R"("solver": {"boundary_pressure": "mirror"},)"),
-       {R"(/solver/boundary_pressure: invalid value "mirror"; must be one of: extrapolation, mirroring, zero)"}},
+       {R"(/solver/boundary_pressure: invalid value "mirror"; must be one of: solved, extrapolation, mirroring, zero)"}},
       {"bad solver type", scene_with(R"("solver": {"type": "pcisph"},)"), {"/solver/type:", "must be one of: iisph, wcsph"}},
       {"bad fluid side", scene_with(R"("boundaries": [{"shape": "polyline", "points": [[0, 0], [1, 0]], "fluid_side": "inside"}],)"),
        {"/boundaries/0/fluid_side:", "must be one of: left, right"}},

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -31,6 +32,16 @@ std::vector<std::string> strings(const json& j, const std::string& file, const s
   return out;
 }
 
+std::vector<SolverType> solvers(const json& j, const std::string& file, const std::string& path) {
+  std::vector<SolverType> out;
+  for (const json& s : j) {
+    if (s == "iisph") out.push_back(SolverType::IISPH);
+    else if (s == "wcsph") out.push_back(SolverType::WCSPH);
+    else fail(file, path, "invalid solver " + s.dump() + "; must be iisph or wcsph");
+  }
+  return out;
+}
+
 double kinetic_energy(const Simulation& sim) {
   double e = 0;
   for (const Vec2& v : sim.fluid().v) e += v.squaredNorm();
@@ -44,6 +55,19 @@ Vec2 centre_of_mass(const Simulation& sim) {
 }
 
 }  // namespace
+
+bool HardCase::expects_stop(SolverType s) const {
+  return std::find(expect_stop.begin(), expect_stop.end(), s) != expect_stop.end();
+}
+
+const char* outcome_name(Outcome o) {
+  switch (o) {
+    case Outcome::Held: return "held";
+    case Outcome::ExpectedStop: return "expected_stop";
+    case Outcome::Failed: break;
+  }
+  return "failed";
+}
 
 std::vector<HardCase> load_suite(const std::string& path) {
   std::ifstream in(path);
@@ -76,21 +100,21 @@ std::vector<HardCase> load_suite(const std::string& path) {
       else if (key == "known_limit" && v.is_boolean()) c.known_limit = v.get<bool>();
       else if (key == "max_density_error_iisph" && v.is_number() && v.get<double>() > 0) c.max_density_error_iisph = v.get<double>();
       else if (key == "max_density_error_wcsph" && v.is_number() && v.get<double>() > 0) c.max_density_error_wcsph = v.get<double>();
-      else if (key == "solvers" && v.is_array()) {
-        c.solvers.clear();
-        for (const json& s : v) {
-          if (s == "iisph") c.solvers.push_back(SolverType::IISPH);
-          else if (s == "wcsph") c.solvers.push_back(SolverType::WCSPH);
-          else fail(path, kp, "invalid solver " + s.dump() + "; must be iisph or wcsph");
-        }
-      } else {
+      else if (key == "why" && v.is_string()) c.why = v.get<std::string>();
+      else if (key == "solvers" && v.is_array()) c.solvers = solvers(v, path, kp);
+      else if (key == "expect_stop" && v.is_array()) c.expect_stop = solvers(v, path, kp);
+      else {
         fail(path, kp, "unknown key or wrong type " + v.dump() +
-                           "; allowed: name, scene, what (strings), set, short, iisph, wcsph (arrays of \"path=value\"), "
-                           "solvers ([\"iisph\", \"wcsph\"]), resting, known_limit (bool), max_density_error_iisph, "
-                           "max_density_error_wcsph (numbers > 0, percent)");
+                           "; allowed: name, scene, what, why (strings), set, short, iisph, wcsph (arrays of \"path=value\"), "
+                           "solvers, expect_stop ([\"iisph\", \"wcsph\"]), resting, known_limit (bool), "
+                           "max_density_error_iisph, max_density_error_wcsph (numbers > 0, percent)");
       }
     }
     if (c.name.empty() || c.scene.empty()) fail(path, at, "needs \"name\" and \"scene\"");
+    for (SolverType s : c.expect_stop)
+      if (std::find(c.solvers.begin(), c.solvers.end(), s) == c.solvers.end())
+        fail(path, at + "/expect_stop", "lists a solver the case does not run");
+    if (!c.expect_stop.empty() && c.why.empty()) fail(path, at, "\"expect_stop\" needs \"why\": the reason the stop is expected");
     cases.push_back(std::move(c));
   }
   return cases;
@@ -101,6 +125,8 @@ CaseResult run_case(const HardCase& c, const std::string& suite_dir, SolverType 
   CaseResult r;
   r.name = c.name;
   r.solver = iisph ? "iisph" : "wcsph";
+  r.known_limit = c.known_limit;
+  const std::string failed = c.known_limit ? "FAILED (known limit): " : "FAILED: ";
   r.bound = iisph ? c.max_density_error_iisph : c.max_density_error_wcsph;
   std::vector<std::string> set = c.set;
   set.push_back(std::string("solver.type=") + r.solver);
@@ -116,7 +142,7 @@ CaseResult run_case(const HardCase& c, const std::string& suite_dir, SolverType 
   try {
     scene = load_scene((std::filesystem::path(suite_dir) / c.scene).string(), set);
   } catch (const SceneError& e) {
-    r.outcome = std::string("FAILED: scene error: ") + e.what();
+    r.outcome = failed + "scene error: " + e.what();
     return r;
   }
   r.tolerance = scene.solver.tolerance_percent;
@@ -126,6 +152,7 @@ CaseResult run_case(const HardCase& c, const std::string& suite_dir, SolverType 
   const Vec2 com0 = centre_of_mass(sim);
   double sum_err = 0, sum_iter = 0;
   bool stopped = false;
+  std::string detector;  // the detector's message when it stopped the run
   try {
     while (!sim.finished()) {
       const StepStats st = sim.step();
@@ -144,7 +171,7 @@ CaseResult run_case(const HardCase& c, const std::string& suite_dir, SolverType 
     }
   } catch (const SimulationUnstable& e) {
     stopped = true;
-    r.outcome = std::string("stopped by the detector: ") + e.what();
+    detector = e.what();
   }
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.simulated = sim.time();
@@ -153,8 +180,8 @@ CaseResult run_case(const HardCase& c, const std::string& suite_dir, SolverType 
   r.avg_iterations = sum_iter / ns;
   if (c.resting) r.drift = (centre_of_mass(sim) - com0).norm();
 
-  // A run the detector stopped is WCSPH's correct answer to a case it cannot hold (its
-  // leaks and errors up to then stayed under the detector's limits); IISPH must hold all.
+  // The detector stopping a run is a failure unless the case declares it for this
+  // solver; a declared stop that does not come means the suite is stale.
   std::ostringstream why;
   if (!stopped) {
     if (r.leaks > 0) why << r.leaks << " fluid particles through a wall; ";
@@ -162,20 +189,26 @@ CaseResult run_case(const HardCase& c, const std::string& suite_dir, SolverType 
     if (r.max_density_error > r.bound) why << "density error " << r.max_density_error << " % above " << r.bound << " %; ";
     if (c.resting && !(r.ke_end <= 0.5 * r.ke_peak)) why << "kinetic energy not decaying (end " << r.ke_end << ", peak " << r.ke_peak << "); ";
     if (c.resting && r.drift > scene.spacing) why << "centre of mass drifted " << r.drift << " m; ";
-  } else if (iisph) {
-    why << "IISPH must hold every case; ";
   }
-  const std::string problems = why.str();
-  r.passed = problems.empty();
-  if (!r.passed) r.outcome = "FAILED: " + problems.substr(0, problems.size() - 2) + (stopped ? " (" + r.outcome + ")" : "");
-  else if (!stopped) r.outcome = "held";
-  // A documented limit: failing, or the detector stopping the run, is the expected
-  // answer; running to the end within the criteria means the docs are stale.
-  if (c.known_limit) {
-    const bool held = r.passed && !stopped;
-    if (held) r.outcome = "HOLDS, but the suite lists it as a known limit: update it";
-    else r.outcome = "known limit: " + r.outcome.substr(r.outcome.rfind("FAILED: ", 0) == 0 ? 8 : 0);
-    r.passed = !held;
+  std::string problems = why.str();
+  if (!problems.empty()) problems.resize(problems.size() - 2);
+  const bool expected = c.expects_stop(solver);
+  if (stopped && expected) {
+    r.result = Outcome::ExpectedStop;
+    r.outcome = "expected stop: " + detector;
+  } else if (stopped) {
+    r.result = Outcome::Failed;
+    r.outcome = failed + "stopped by the detector: " + detector;
+  } else if (expected) {
+    r.result = Outcome::Failed;
+    r.outcome = failed + (problems.empty() ? "expected to stop but held: update the suite"
+                                           : "expected to stop but ran to the end: " + problems);
+  } else if (!problems.empty()) {
+    r.result = Outcome::Failed;
+    r.outcome = failed + problems;
+  } else {
+    r.result = Outcome::Held;
+    r.outcome = c.known_limit ? "held (listed as a known limit: update the suite)" : "held";
   }
   return r;
 }

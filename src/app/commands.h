@@ -97,12 +97,12 @@ struct SuiteOptions {
 int run_suite(const SuiteOptions& o);
 
 struct ValidateOptions {
-  std::string what;          // hydrostatic | dam-break
+  std::string what;          // hydrostatic | dam-break | elliptical-drop
   std::string scene;         // empty: scenes/validation/<what>.json
   std::string output_dir = "renders/validation";
-  std::string solver = "both";  // dam-break: iisph | wcsph | both
+  std::string solver = "both";  // dam-break, elliptical-drop: iisph | wcsph | both
   std::string only;          // hydrostatic: run only this case
-  double spacing = 0;        // dam-break: > 0 overrides the scene's spacing
+  double spacing = 0;        // dam-break, elliptical-drop: > 0 overrides the scene's spacing
   double max_rms = 0.20;     // dam-break: bound on the RMS relative front error (the tests' bound)
   int threads = 0;
   std::vector<std::string> set;

@@ -205,14 +205,14 @@ int main(int argc, char** argv) {
   suitecmd->add_option("--csv", suite.csv, "CSV output file (default renders/suite/suite.csv)");
 
   ValidateOptions val;
-  CLI::App* validatecmd = app.add_subcommand("validate", "Validation against known answers: hydrostatic pressure, Martin & Moyce's dam break");
-  validatecmd->add_option("what", val.what, "hydrostatic or dam-break")->required()->check(CLI::IsMember({"hydrostatic", "dam-break"}));
-  validatecmd->add_option("--scene", val.scene, "Scene file (default scenes/validation/hydrostatic.json or dam_break_martin_moyce.json)");
+  CLI::App* validatecmd = app.add_subcommand("validate", "Validation against known answers: hydrostatic pressure, Martin & Moyce's dam break, Monaghan's elliptical drop");
+  validatecmd->add_option("what", val.what, "hydrostatic, dam-break or elliptical-drop")->required()->check(CLI::IsMember({"hydrostatic", "dam-break", "elliptical-drop"}));
+  validatecmd->add_option("--scene", val.scene, "Scene file (default scenes/validation/hydrostatic.json, dam_break_martin_moyce.json or elliptical_drop.json)");
   validatecmd->add_option("-o,--output", val.output_dir, "Directory for the CSV files and figures (default renders/validation)");
-  validatecmd->add_option("--solver", val.solver, "dam-break: iisph, wcsph or both (default)")
+  validatecmd->add_option("--solver", val.solver, "dam-break, elliptical-drop: iisph, wcsph or both (default)")
       ->check(CLI::IsMember({"iisph", "wcsph", "both"}));
   validatecmd->add_option("--case", val.only, "hydrostatic: only this case, e.g. iisph_mirroring");
-  validatecmd->add_option("--spacing", val.spacing, "dam-break: particle spacing h [m] (default: the scene's, 0.02)")
+  validatecmd->add_option("--spacing", val.spacing, "dam-break, elliptical-drop: particle spacing h [m] (default: the scene's, 0.02 and 0.025)")
       ->check(positive);
   validatecmd->add_option("--max-rms", val.max_rms, "dam-break: bound on the RMS relative front error (default 0.20)")
       ->check(positive);

@@ -87,6 +87,7 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
 
   Simulation sim(scene);
   RunTotals totals;
+  totals.initial_energy = sim.mechanical_energy();
   // Resumed: the checkpoint's state and totals, stats.csv cut back to its step, and its
   // frame drawn again (the PNG may have been in flight when the run stopped).
   const StepStats* resumed = control.resume ? resume_run(sim, totals, dir, *control.resume) : nullptr;

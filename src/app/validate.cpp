@@ -1,4 +1,4 @@
-// `sluice validate hydrostatic|dam-break`: the validation runs against known answers.
+// `sluice validate hydrostatic|dam-break|elliptical-drop`: the validation runs against known answers.
 // Each prints its error figures, writes CSV and a gnuplot figure (PNG) into the output
 // directory, and exits 1 when an error exceeds the bound the tests hold it to.
 #include <cctype>
@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "analysis/elliptical_drop.h"
 #include "analysis/plot.h"
 #include "analysis/validation.h"
 #include "app/commands.h"
@@ -157,6 +158,95 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
   return failed ? 1 : 0;
 }
 
+// Monaghan's (1994) inviscid elliptical drop: the semi-axes against the exact ODE.
+int validate_elliptical_drop(const ValidateOptions& o, const fs::path& dir) {
+  const std::string scene_file = o.scene.empty() ? "scenes/validation/elliptical_drop.json" : o.scene;
+  std::vector<std::string> solvers;
+  if (o.solver != "wcsph") solvers.push_back("iisph");
+  if (o.solver != "iisph") solvers.push_back("wcsph");
+  const double A0 = analysis::kEllipticalDropA0, bound = analysis::kEllipticalDropBound;
+  std::printf("elliptical drop %s: u = -A0 x, v = A0 y with A0 = %g 1/s; semi-axes from the second moments against "
+              "Monaghan's (1994) ODE\n", scene_file.c_str(), A0);
+  std::printf("%-6s %9s %6s %6s %9s %9s %9s %9s %8s %8s  %s\n", "solver", "particles", "steps", "t_s", "a_sim", "a_ode",
+              "b_sim", "b_ode", "error_%", "bound_%", "result");
+  std::string series = "solver,t_s,a_sim_m,a_ode_m,b_sim_m,b_ode_m,a_rel_error,b_rel_error,xy_correlation\n";
+  std::string summary = "solver,spacing_m,particles,steps,avg_iterations,wall_s,t_end_s,a_sim_m,a_ode_m,b_sim_m,b_ode_m,a_error,b_error,bound,passed\n";
+  int failed = 0;
+  for (const auto& solver : solvers) {
+    std::vector<std::string> base{"solver.type=" + solver};
+    if (o.spacing > 0) base.push_back(number_override("spacing", o.spacing));
+    std::vector<std::string> set = base;
+    set.insert(set.end(), o.set.begin(), o.set.end());
+    Scene scene = load_scene(scene_file, set);
+    if (solver == "wcsph") {
+      // The step and stiffness depend on the spacing and the drop; --set still wins.
+      set = base;
+      const auto w = analysis::elliptical_drop_wcsph_overrides(scene, A0);
+      set.insert(set.end(), w.begin(), w.end());
+      set.insert(set.end(), o.set.begin(), o.set.end());
+      scene = load_scene(scene_file, set);
+    }
+    const auto r = analysis::run_elliptical_drop(scene, A0);
+    const auto& e = r.series.back();
+    const bool ok = r.error <= bound;
+    failed += !ok;
+    std::printf("%-6s %9ld %6ld %6.3f %9.5f %9.5f %9.5f %9.5f %8.3f %8.1f  %s\n", solver.c_str(), r.particles, r.steps, e.t,
+                e.a_sim, e.a_ode, e.b_sim, e.b_ode, 100 * r.error, 100 * bound, ok ? "ok" : "FAILED");
+    std::printf("       h = %g m, R0 = %.4f m, %.1f s, %.2f iterations/step, max speed at the end %.3f m/s", r.h, r.R0,
+                r.wall_seconds, r.avg_iterations, r.max_speed_end);
+    if (solver == "wcsph") std::printf(", k = %.4g Pa m, dt = %.4g s", scene.solver.stiffness, scene.time.dt);
+    std::printf("\n");
+    std::fflush(stdout);
+    for (const auto& p : r.series) {
+      char line[256];
+      std::snprintf(line, sizeof line, "%s,%.6f,%.7f,%.7f,%.7f,%.7f,%.7f,%.7f,%.6f\n", solver.c_str(), p.t, p.a_sim, p.a_ode,
+                    p.b_sim, p.b_ode, p.a_sim / p.a_ode - 1, p.b_sim / p.b_ode - 1, p.xy_moment);
+      series += line;
+    }
+    char line[512];
+    std::snprintf(line, sizeof line, "%s,%g,%ld,%ld,%.3f,%.2f,%.6f,%.7f,%.7f,%.7f,%.7f,%.6f,%.6f,%.3f,%d\n", solver.c_str(), r.h,
+                  r.particles, r.steps, r.avg_iterations, r.wall_seconds, e.t, e.a_sim, e.a_ode, e.b_sim, e.b_ode, r.a_error,
+                  r.b_error, bound, ok ? 1 : 0);
+    summary += line;
+  }
+  write_file_atomic((dir / "elliptical_drop_axes.csv").string(), series);
+  write_file_atomic((dir / "elliptical_drop.csv").string(), summary);
+  // Top: a(t) and b(t), the ODE as lines and each solver's measured axes as points.
+  // Bottom: their signed relative errors against the bound.
+  std::ostringstream gp;
+  gp << "set datafile missing \"NaN\"\n"
+     << analysis::gnuplot_png_preamble("elliptical_drop.png", 1200, 1200)
+     << "f = \"elliptical_drop_axes.csv\"\nset multiplot layout 2,1\n"
+        "set title \"Elliptical drop (Monaghan 1994), A_0 = " << A0 << " 1/s: semi-axes from the second moments\"\n"
+        "set xlabel \"t [s]\"\nset ylabel \"semi-axis [m]\"\nset key top left width 2\n"
+        "plot f using 2:(strcol(1) eq " << analysis::gnuplot_quote(solvers.front())
+     << " ? $6 : NaN) skip 1 with lines lc rgb \"black\" title \"b, exact\", "
+        "f using 2:(strcol(1) eq " << analysis::gnuplot_quote(solvers.front())
+     << " ? $4 : NaN) skip 1 with lines lc rgb \"black\" dt 2 title \"a, exact\"";
+  auto style = [](const std::string& s) {
+    return std::string(s == "iisph" ? " pt 6 ps 1.5 lc rgb \"#1f77b4\"" : " pt 4 ps 1.5 lc rgb \"#d62728\"");
+  };
+  auto label = [](const std::string& s) { return std::string(s == "iisph" ? "IISPH" : "WCSPH"); };
+  for (const auto& s : solvers)
+    gp << ", f using 2:(strcol(1) eq " << analysis::gnuplot_quote(s) << " ? $5 : NaN) skip 1 with points" << style(s)
+       << " title " << analysis::gnuplot_quote("b, " + label(s)) << ", f using 2:(strcol(1) eq " << analysis::gnuplot_quote(s)
+       << " ? $3 : NaN) skip 1 with points" << style(s) << " notitle";
+  gp << "\nset title \"relative error of the semi-axes (a: dashed, b: solid)\"\nset ylabel \"error [%]\"\n"
+        "set yrange [*<-1.5:1.5<*]\nset key bottom left width 2\n"
+     << "plot " << 100 * bound << " with lines lc rgb \"black\" dt 3 title \"bound\", " << -100 * bound
+     << " with lines lc rgb \"black\" dt 3 notitle";
+  for (const auto& s : solvers) {
+    gp << ", f using 2:(strcol(1) eq " << analysis::gnuplot_quote(s) << " ? 100*$8 : NaN) skip 1 with linespoints"
+       << style(s) << " title " << analysis::gnuplot_quote(label(s)) << ", f using 2:(strcol(1) eq "
+       << analysis::gnuplot_quote(s) << " ? 100*$7 : NaN) skip 1 with linespoints" << style(s) << " dt 2 notitle";
+  }
+  gp << "\nunset multiplot\n";
+  report_figure(analysis::run_gnuplot((dir / "elliptical_drop.gp").string(), gp.str()), dir / "elliptical_drop.png");
+  std::printf("wrote %s, %s\n", (dir / "elliptical_drop.csv").string().c_str(),
+              (dir / "elliptical_drop_axes.csv").string().c_str());
+  return failed ? 1 : 0;
+}
+
 }  // namespace
 
 int run_validate(const ValidateOptions& o) {
@@ -165,7 +255,8 @@ int run_validate(const ValidateOptions& o) {
   make_directory(dir);
   if (o.what == "hydrostatic") return validate_hydrostatic(o, dir);
   if (o.what == "dam-break") return validate_dam_break(o, dir);
-  throw view::FlagError("validate", o.what, "hydrostatic, dam-break");
+  if (o.what == "elliptical-drop") return validate_elliptical_drop(o, dir);
+  throw view::FlagError("validate", o.what, "hydrostatic, dam-break, elliptical-drop");
 }
 
 }  // namespace sluice::app

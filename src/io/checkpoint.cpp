@@ -94,7 +94,7 @@ class Reader {
 void put_totals(Writer& w, const RunTotals& t) {
   w.put(static_cast<std::int64_t>(t.steps));
   for (double d : {t.simulated_time, t.wall_seconds, t.sum_iterations, t.sum_avg_error, t.max_error,
-                   t.sum_density_error})
+                   t.sum_density_error, t.initial_energy, t.final_energy, t.boundary_work})
     w.put(d);
   for (double d : t.sum_ms) w.put(d);
 }
@@ -104,7 +104,7 @@ void get_totals(Reader& r, RunTotals& t) {
   r.get(steps, "run totals");
   t.steps = static_cast<long>(steps);
   for (double* d : {&t.simulated_time, &t.wall_seconds, &t.sum_iterations, &t.sum_avg_error, &t.max_error,
-                    &t.sum_density_error})
+                    &t.sum_density_error, &t.initial_energy, &t.final_energy, &t.boundary_work})
     r.get(*d, "run totals");
   for (double& d : t.sum_ms) r.get(d, "run totals");
 }
@@ -114,7 +114,9 @@ void put_step(Writer& w, const StepStats& s) {
   w.put(s.time);
   w.put(s.dt);
   w.put(static_cast<std::int32_t>(s.iterations));
-  for (double d : {s.avg_error_percent, s.max_error_percent, s.density_error_percent, s.max_cfl}) w.put(d);
+  for (double d : {s.avg_error_percent, s.max_error_percent, s.density_error_percent, s.max_cfl, s.kinetic_energy,
+                   s.potential_energy, s.mechanical_energy, s.boundary_work})
+    w.put(d);
   w.put(s.fluid_particles);
   w.put(s.frame);
   for (double d : {s.ms_neighbors, s.ms_nonpressure, s.ms_pressure, s.ms_integrate, s.ms_total, s.ms_boundary})
@@ -130,7 +132,8 @@ void get_step(Reader& r, StepStats& s) {
   r.get(s.dt, "last step");
   r.get(iterations, "last step");
   s.iterations = iterations;
-  for (double* d : {&s.avg_error_percent, &s.max_error_percent, &s.density_error_percent, &s.max_cfl})
+  for (double* d : {&s.avg_error_percent, &s.max_error_percent, &s.density_error_percent, &s.max_cfl, &s.kinetic_energy,
+                    &s.potential_energy, &s.mechanical_energy, &s.boundary_work})
     r.get(*d, "last step");
   r.get(s.fluid_particles, "last step");
   r.get(s.frame, "last step");

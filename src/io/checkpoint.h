@@ -32,7 +32,7 @@ class CheckpointError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-constexpr std::uint32_t kCheckpointVersion = 1;
+constexpr std::uint32_t kCheckpointVersion = 2;  // 2: energies in the totals and the last step
 
 // What a run needs to continue: the simulation's state and the run's own records.
 struct Checkpoint {

@@ -8,7 +8,8 @@ namespace sluice {
 
 const char* StatsCsv::header() {
   return "step,time,dt,iterations,avg_error_percent,max_error_percent,density_error_percent,max_cfl,"
-         "fluid_particles,frame,ms_neighbors,ms_nonpressure,ms_pressure,ms_integrate,ms_total,ms_boundary";
+         "fluid_particles,frame,ms_neighbors,ms_nonpressure,ms_pressure,ms_integrate,ms_total,ms_boundary,"
+         "kinetic_energy,potential_energy,mechanical_energy,boundary_work";
 }
 
 StatsCsv::StatsCsv(const std::string& path, bool append)
@@ -34,11 +35,13 @@ void StatsCsv::finish() {
 }
 
 void StatsCsv::write(const StepStats& s) {
-  char line[512];
-  std::snprintf(line, sizeof line, "%ld,%.9g,%.6g,%d,%.6g,%.6g,%.6g,%.6g,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n", s.step,
+  char line[640];
+  std::snprintf(line, sizeof line,
+                "%ld,%.9g,%.6g,%d,%.6g,%.6g,%.6g,%.6g,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.10g,%.10g,%.12g,%.10g\n", s.step,
                 s.time, s.dt, s.iterations, s.avg_error_percent, s.max_error_percent, s.density_error_percent,
                 s.max_cfl, s.fluid_particles, s.frame, s.ms_neighbors, s.ms_nonpressure, s.ms_pressure,
-                s.ms_integrate, s.ms_total, s.ms_boundary);
+                s.ms_integrate, s.ms_total, s.ms_boundary, s.kinetic_energy, s.potential_energy, s.mechanical_energy,
+                s.boundary_work);
   out_ << line;
   if (!out_) throw OutputError(tmp_ + ": write failed (disk full?)");
 }
@@ -109,6 +112,8 @@ void RunTotals::add(const StepStats& s) {
   sum_avg_error += s.avg_error_percent;
   sum_density_error += s.density_error_percent;
   max_error = std::max(max_error, s.max_error_percent);
+  final_energy = s.mechanical_energy;
+  boundary_work += s.boundary_work;
   const double ms[6] = {s.ms_neighbors, s.ms_nonpressure, s.ms_pressure, s.ms_integrate, s.ms_total, s.ms_boundary};
   for (int k = 0; k < 6; ++k) sum_ms[k] += ms[k];
 }
@@ -124,6 +129,13 @@ nlohmann::json RunTotals::to_json(long fluid_particles) const {
       {"average_error_percent", sum_avg_error / ns},
       {"max_error_percent", max_error},
       {"average_density_error_percent", sum_density_error / ns},
+      // Mechanical energy [J/m]: its change over the run against the boundaries' work
+      // (an inviscid closed tank at rest: drift <= 0; moving boundaries: drift ~ work).
+      {"energy",
+       {{"initial", initial_energy},
+        {"final", steps > 0 ? final_energy : initial_energy},
+        {"drift", steps > 0 ? final_energy - initial_energy : 0.0},
+        {"boundary_work", boundary_work}}},
       {"us_per_particle_step", 1000.0 * sum_ms[4] / particle_steps},
       {"ms_per_step",
        {{"neighbors", sum_ms[0] / ns},

@@ -58,7 +58,10 @@ struct RunTotals {
   double sum_avg_error = 0;
   double max_error = 0;
   double sum_density_error = 0;
-  double sum_ms[6] = {0, 0, 0, 0, 0, 0};  // neighbours, non-pressure, pressure, integration, total, moving boundaries
+  double sum_ms[6] = {0, 0, 0, 0, 0, 0};
+  // Mechanical energy at t = 0 (Simulation::mechanical_energy before the first step),
+  // after the last step, and the boundaries' work summed over the steps [J/m].
+  double initial_energy = 0, final_energy = 0, boundary_work = 0;  // neighbours, non-pressure, pressure, integration, total, moving boundaries
 
   void add(const StepStats& s);
   nlohmann::json to_json(long fluid_particles) const;

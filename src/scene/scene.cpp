@@ -370,6 +370,8 @@ SolverSettings read_solver(Reader& r, const Context& ctx) {
   s.rest_density = r.number("rest_density", s.rest_density, Range::positive("[kg/m^2]"));
   s.gravity = r.vec2("gravity", s.gravity);
   s.viscosity = r.number("viscosity", s.viscosity, Range::at_least(0, "[m^2/s]"));
+  s.artificial_viscosity = r.number("artificial_viscosity", s.artificial_viscosity, Range::at_least(0, "(alpha)"));
+  s.sound_speed = r.number("sound_speed", s.sound_speed, Range::at_least(0, "[m/s]"));
   s.tolerance_percent = r.number("tolerance", s.tolerance_percent, Range::positive("(percent)"));
   s.omega = r.number("omega", s.omega, Range::open_closed(0, 1));
   s.min_iterations = r.integer("min_iterations", s.min_iterations, 1, 10000);
@@ -381,7 +383,8 @@ SolverSettings read_solver(Reader& r, const Context& ctx) {
                                   {{"warm", PressureInit::WarmStart}, {"thesis", PressureInit::Thesis}});
   s.stiffness = r.number("stiffness", s.stiffness, Range::positive("[Pa*m]"));
   s.boundary_pressure = r.enumeration("boundary_pressure", s.boundary_pressure,
-                                      {{"extrapolation", BoundaryPressure::Extrapolation},
+                                      {{"solved", BoundaryPressure::Solved},
+                                       {"extrapolation", BoundaryPressure::Extrapolation},
                                        {"mirroring", BoundaryPressure::Mirroring},
                                        {"zero", BoundaryPressure::Zero}});
   s.gamma1 = r.number("gamma1", s.gamma1, Range::positive());
@@ -410,6 +413,7 @@ TimeSettings read_time(Reader& r, const Context& ctx) {
   r.resolved()["cfl"] = fixed ? json(nullptr) : json(t.cfl);
   t.dt_max = r.number("dt_max", t.dt_max, Range::positive("[s]"));
   t.dt_min = r.number("dt_min", t.dt_min, Range::positive("[s]"));
+  t.settle = r.number("settle", t.settle, Range::at_least(0, "[s]"));
   if (t.dt_min > t.dt_max)
     ctx.fail(r.at("dt_min"), "dt_min " + num(t.dt_min) + " is larger than dt_max " + num(t.dt_max) + "; need 0 < dt_min <= dt_max");
   r.finish();
@@ -939,6 +943,16 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
     Reader r(ctx, sections[1], "/time");
     scene.time = read_time(r, ctx);
     resolved["time"] = r.resolved();
+  }
+  // WCSPH's fixed step must resolve its sound waves (Monaghan 1992): dt <= 0.4 h / c.
+  if (scene.solver.type == SolverType::WCSPH && scene.time.dt > 0) {
+    const double c = std::sqrt(scene.solver.stiffness / scene.solver.rest_density);
+    const double limit = kAcousticCfl * h / c;
+    if (scene.time.dt > limit)
+      ctx.fail("/time/dt", "WCSPH step " + num(scene.time.dt) + " s exceeds the acoustic limit 0.4 h / c = " + num(limit) +
+                               " s (sound speed c = sqrt(stiffness / rest_density) = " + num(c) +
+                               " m/s, h = " + num(h) + " m); use time.dt <= " + num(limit) +
+                               " or time.dt=null for the adaptive step");
   }
   {
     Reader r(ctx, sections[2], "/stability");

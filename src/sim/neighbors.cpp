@@ -212,7 +212,7 @@ void transpose_neighbors(const NeighborLists& fb, Index boundary_count, Neighbor
   for (Index b = 0; b < boundary_count; ++b) bf.offset[b + 1] += bf.offset[b];
   bf.j.resize(static_cast<size_t>(fb.pairs()));
   bf.w.resize(static_cast<size_t>(fb.pairs()));
-  bf.grad.clear();
+  bf.grad.resize(static_cast<size_t>(fb.pairs()));
   std::vector<Index> fill(bf.offset.begin(), bf.offset.end() - 1);
   // Serial and in fluid order: deterministic, and each boundary list sorted by fluid index.
   for (Index i = 0; i < n; ++i) {
@@ -220,6 +220,7 @@ void transpose_neighbors(const NeighborLists& fb, Index boundary_count, Neighbor
       const Index e = fill[fb.j[k]]++;
       bf.j[e] = i;
       bf.w[e] = fb.w[k];
+      bf.grad[e] = -fb.grad[k];  // grad W(x_b - x_f)
     }
   }
 }

@@ -163,6 +163,6 @@ namespace sluice {
 void fill_pair_cache(const std::vector<Vec2>& query, const std::vector<Vec2>& points,
                      const CubicSpline2D& kernel, PairCache cache, NeighborLists& lists);
 
-// lists of boundary -> fluid pairs from fluid -> boundary pairs, keeping W.
+// lists of boundary -> fluid pairs from fluid -> boundary pairs, keeping W and grad W.
 void transpose_neighbors(const NeighborLists& fb, Index boundary_count, NeighborLists& bf);
 }  // namespace sluice

@@ -11,6 +11,11 @@ enum class SolverType { IISPH, WCSPH };
 
 // How a fluid particle sees the pressure of its boundary neighbours (section 4.2).
 enum class BoundaryPressure {
+  // Pressure boundaries (Band et al. 2018): each boundary sample has its own density
+  // constraint in the PPE and its pressure is solved with the fluid's (WCSPH: its own
+  // equation of state). The boundary force is then a constraint force and does no work
+  // on a fluid at rest; Eq. 25 does (docs/validation.md, "Energy").
+  Solved,
   Extrapolation,  // Eq. 25: p_b from its fluid neighbours plus the hydrostatic term
   Mirroring,      // section 4.2.2: p_b = p_f, rho_b = rho_f
   Zero,           // section 4.2.3: p_b = 0
@@ -31,6 +36,12 @@ struct SolverSettings {
   double rest_density = 1000.0;         // rho0 [kg/m^2], > 0
   Vec2 gravity{0.0, -9.81};             // a_ext [m/s^2]
   double viscosity = 0.0;               // kinematic nu [m^2/s], >= 0, Eq. 12; 0 skips the pass
+  // Artificial viscosity of Monaghan (1992, Eq. 4.1): Pi_ij = -alpha c h mu_ij / rho_ij on
+  // approaching pairs, for both solvers; >= 0, 0 skips it. 0.01 is DualSPHysics' default.
+  double artificial_viscosity = 0.01;
+  // Speed c of the artificial viscosity [m/s]; 0: WCSPH's sound speed sqrt(k / rho0),
+  // IISPH 10 sqrt(2 g H) (Monaghan's c >= 10 v_max with H the fluid's initial height).
+  double sound_speed = 0.0;
   // IISPH (chapter 3)
   double tolerance_percent = 0.1;       // average predicted compression error (Eq. 23) [%], > 0
   double omega = 0.5;                   // relaxation of Eq. 21, in (0, 1]
@@ -44,7 +55,7 @@ struct SolverSettings {
   // WCSPH (section 2.3.1)
   double stiffness = 1.0e6;             // k [Pa*m], > 0
   // Boundaries (chapter 4)
-  BoundaryPressure boundary_pressure = BoundaryPressure::Extrapolation;
+  BoundaryPressure boundary_pressure = BoundaryPressure::Solved;
   // Boundary volume scale, V_b = gamma1 / sum_b W (section 4.1), > 0. Akinci's volume
   // over-estimates the cell of a wall sample, whose kernel sum misses the fluid side:
   // for two or more layers at the fluid spacing (the default sampling) V_b = 1.188 h^2,
@@ -63,7 +74,14 @@ struct TimeSettings {
   double cfl = 0.4;        // lambda of Eq. 14, in (0, 2]
   double dt_max = 1.0e-3;  // largest adaptive step [s]
   double dt_min = 1.0e-6;  // smallest adaptive step [s]; a smaller one means the run went unstable
+  // Settling before t = 0 [s], >= 0: the fluid is stepped under gravity with its
+  // velocities damped (time constant settle / 10) and boundaries held at their t = 0
+  // pose, then starts at rest with its pressure field established. 0: none.
+  double settle = 0.0;
 };
+
+// WCSPH's acoustic limit (Monaghan 1992): dt <= kAcousticCfl h / (c + v_max).
+constexpr double kAcousticCfl = 0.4;
 
 // Limits of the instability detector: a run stops with a message when one is exceeded.
 struct StabilityLimits {

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "sim/parallel.h"
@@ -44,6 +45,24 @@ class Stopwatch {
 // Relative compression of Eq. 15 in percent.
 inline double compression_percent(double rho, double rho0) {
   return std::max(100.0 * (rho - rho0) / rho0, 0.0);
+}
+
+// IISPH has no sound speed; its artificial viscosity takes Monaghan's (1994) choice for a
+// weakly compressible fluid, c = 10 v_max, with v_max = sqrt(2 g H) of the fluid's
+// initial height H (or its fastest initial particle, if faster).
+double incompressible_sound_speed(const Scene& scene) {
+  const Vec2 g = scene.solver.gravity;
+  double vmax = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const Vec2& v : scene.fluid_v) vmax = std::max(vmax, v.norm());
+  if (g.norm() > 0) {
+    const Vec2 up = -g.normalized();
+    for (const Vec2& x : scene.fluid_x) {
+      lo = std::min(lo, x.dot(up));
+      hi = std::max(hi, x.dot(up));
+    }
+    if (hi >= lo) vmax = std::max(vmax, std::sqrt(2.0 * g.norm() * (hi - lo + scene.spacing)));
+  }
+  return 10.0 * vmax;
 }
 
 }  // namespace
@@ -114,8 +133,12 @@ Simulation::Simulation(const Scene& scene)
   lost_max_ = scene.bounds_max + Vec2::Constant(margin);
 
   last_frame_ = static_cast<Index>(std::ceil(scene.time.duration * scene.time.fps - 1e-9));
+  wcsph_speed_ = std::sqrt(settings_.stiffness / settings_.rest_density);
+  sound_speed_ = settings_.sound_speed;
+  if (sound_speed_ <= 0) sound_speed_ = settings_.type == SolverType::WCSPH ? wcsph_speed_ : incompressible_sound_speed(scene);
   reorder_fluid();
   recompute_density();
+  if (scene.time.settle > 0) settle();
 }
 
 // Section 4.1: V_b = gamma1 / sum_b' W(x_bb'), summed over all boundary particles of
@@ -330,8 +353,50 @@ StepStats Simulation::step() {
   const double n_steps = std::max(1.0, std::ceil(remaining / dt_nominal - 1e-9));
   const double dt = remaining / n_steps;
   st.dt = dt;
+  advance(dt, st, /*settling=*/false);
 
-  if (has_moving_boundaries()) {
+  ++step_;
+  if (n_steps == 1.0) {
+    time_ = target;
+    ++frame_;
+    st.frame = frame_;
+  } else {
+    time_ += dt;
+  }
+  st.time = time_;
+  st.ms_total = total.ms();
+  check_stability(st);
+  return st;
+}
+
+// Before t = 0: steps under gravity with the velocities relaxed towards zero (time
+// constant settle / 10) and boundaries held at their t = 0 pose, so that the fluid
+// finds its equilibrium, with its pressure field, before the run starts. The run then
+// starts at rest; the pressures stay as the next solve's warm start. No statistics.
+void Simulation::settle() {
+  const double duration = scene_.time.settle, tau = 0.1 * duration;
+  std::fill(boundary_.v.begin(), boundary_.v.end(), Vec2::Zero());
+  std::fill(boundary_.a.begin(), boundary_.a.end(), Vec2::Zero());
+  double t = 0;
+  while (t < duration) {
+    const double dt = std::min(choose_time_step(), duration - t);
+    StepStats st;
+    st.step = -settle_steps_;
+    st.time = t;
+    advance(dt, st, /*settling=*/true);
+    const double keep = std::exp(-dt / tau);
+    parallel_for(fluid_.size(), [&](Index i) { fluid_.v[i] *= keep; });
+    ++settle_steps_;
+    t += dt;
+    check_stability(st);
+  }
+  std::fill(fluid_.v.begin(), fluid_.v.end(), Vec2::Zero());
+  recompute_density();
+}
+
+void Simulation::advance(double dt, StepStats& st, bool settling) {
+  if (has_moving_boundaries()) scratch_.work.assign(static_cast<size_t>(fluid_.size()), 0.0);
+  if (has_moving_boundaries() && !settling) {
     const Stopwatch t;
     move_boundaries(dt);
     update_boundary_volumes();
@@ -340,7 +405,7 @@ StepStats Simulation::step() {
   {
     // Algorithm 2's first loop: neighbours and density (with the periodic spatial sort).
     const Stopwatch t;
-    if (step_ % kReorderEvery == 0) reorder_fluid();
+    if ((step_ + settle_steps_) % kReorderEvery == 0) reorder_fluid();
     find_neighbors_phase();
     compute_density();
     st.ms_neighbors = t.ms();
@@ -368,21 +433,26 @@ StepStats Simulation::step() {
     const Index n = fluid_.size();
     const double vmax = std::sqrt(parallel_max(n, 0.0, [&](Index i) { return fluid_.v[i].squaredNorm(); }));
     st.max_cfl = vmax * dt / scene_.spacing;
+    measure_energy(st);
     st.ms_integrate = t.ms();
   }
+}
 
-  ++step_;
-  if (n_steps == 1.0) {
-    time_ = target;
-    ++frame_;
-    st.frame = frame_;
-  } else {
-    time_ += dt;
-  }
-  st.time = time_;
-  st.ms_total = total.ms();
-  check_stability(st);
-  return st;
+double Simulation::mechanical_energy() const {
+  StepStats st;
+  measure_energy(st);
+  return st.mechanical_energy;
+}
+
+void Simulation::measure_energy(StepStats& st) const {
+  const Index n = fluid_.size();
+  const Vec2 g = settings_.gravity;
+  st.kinetic_energy = 0.5 * mass_ * parallel_sum(n, [&](Index i) { return fluid_.v[i].squaredNorm(); });
+  st.potential_energy = -mass_ * parallel_sum(n, [&](Index i) { return g.dot(fluid_.x[i]); });
+  st.mechanical_energy = st.kinetic_energy + st.potential_energy;
+  st.boundary_work = scratch_.work.size() == static_cast<size_t>(n) && has_moving_boundaries()
+                         ? parallel_sum(n, [&](Index i) { return scratch_.work[i]; })
+                         : 0.0;
 }
 
 // Fixed dt, or the CFL condition Eq. 14: dt = lambda h / v_max, at most dt_max.
@@ -395,6 +465,8 @@ double Simulation::choose_time_step() const {
                                max_boundary_speed());
   double dt = ts.dt_max;
   if (vmax > 0) dt = std::min(dt, ts.cfl * scene_.spacing / vmax);
+  // WCSPH also resolves its sound waves (Monaghan 1992): dt <= 0.4 h / (c + v_max).
+  if (settings_.type == SolverType::WCSPH) dt = std::min(dt, kAcousticCfl * scene_.spacing / (wcsph_speed_ + vmax));
   if (dt < ts.dt_min) {
     std::ostringstream os;
     os << "unstable at step " << step_ + 1 << ", t = " << time_ << " s: the CFL time step " << dt
@@ -448,37 +520,56 @@ void Simulation::compute_density() {
     fluid_.rho[i] = mass_ * sf + g2 * rho0 * sb;
   });
   // Eq. 25 gathers over the fluid neighbours of each boundary particle.
-  if (settings_.boundary_pressure == BoundaryPressure::Extrapolation) transpose_neighbors(fb_, boundary_.size(), bf_);
+  // Eq. 25 and pressure boundaries gather over the fluid neighbours of each sample.
+  if (settings_.boundary_pressure == BoundaryPressure::Extrapolation ||
+      settings_.boundary_pressure == BoundaryPressure::Solved)
+    transpose_neighbors(fb_, boundary_.size(), bf_);
 }
 
-// v* = v + dt (a_v + g) with the viscosity of Eq. 12 against fluid and boundary
-// neighbours (boundary neighbours with their own velocity, m_b / rho_b = V_b).
-// With zero viscosity the neighbour pass is skipped.
+// v* = v + dt (a_v + g): the viscosity of Eq. 12 and Monaghan's artificial viscosity
+// (1992, Eq. 4.1; the thesis has none), against fluid and boundary neighbours (boundary
+// neighbours with their own velocity, m_b = rho0 V_b, rho_b = rho0):
+//   a_i += -sum_j m_j Pi_ij grad W_ij,  Pi_ij = -alpha c h mu_ij / rho_ij for v_ij . x_ij < 0,
+//   mu_ij = v_ij . x_ij / (|x_ij|^2 + 0.01 h^2),  rho_ij = (rho_i + rho_j) / 2.
+// With both off the neighbour pass is skipped. The boundary pairs' share of a_v, times
+// the boundary velocity, is the boundaries' work on the fluid (scratch_.work).
 void Simulation::apply_nonpressure(double dt) {
   const Vec2 g = settings_.gravity;
-  const double nu = settings_.viscosity;
+  const double nu = settings_.viscosity, rho0 = settings_.rest_density;
+  const double avc = settings_.artificial_viscosity * sound_speed_ * scene_.spacing;
   const Index n = fluid_.size();
-  if (nu <= 0.0) {
+  if (nu <= 0.0 && avc <= 0.0) {
     parallel_for(n, [&](Index i) { fluid_.v[i] += dt * g; });
     return;
   }
   std::vector<Vec2>& a_v = scratch_.a_p;  // reused as scratch: a_p is recomputed later
   a_v.resize(n);
   const double eps = 0.01 * scene_.spacing * scene_.spacing;
+  const bool work = has_moving_boundaries();
   parallel_for(n, [&](Index i) {
     const Vec2 xi = fluid_.x[i], vi = fluid_.v[i];
-    Vec2 a = Vec2::Zero();
+    const double rhoi = fluid_.rho[i];
+    Vec2 lap = Vec2::Zero(), art = Vec2::Zero();
     for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
       const Index j = ff_.j[k];
-      const Vec2 xij = xi - fluid_.x[j];
-      a += (mass_ / fluid_.rho[j]) * (xij.dot(ff_.grad[k].cast<double>()) / (xij.squaredNorm() + eps)) * (vi - fluid_.v[j]);
+      const Vec2 xij = xi - fluid_.x[j], vij = vi - fluid_.v[j], gw = ff_.grad[k].cast<double>();
+      const double r2 = xij.squaredNorm() + eps, vx = vij.dot(xij);
+      lap += (mass_ / fluid_.rho[j]) * (xij.dot(gw) / r2) * vij;
+      if (vx < 0.0) art += (mass_ * vx / (r2 * 0.5 * (rhoi + fluid_.rho[j]))) * gw;
     }
+    Vec2 acc = 2.0 * nu * lap + avc * art;
+    double w = 0.0;
     for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
       const Index b = fb_.j[k];
-      const Vec2 xib = xi - boundary_.x[b];
-      a += boundary_.volume[b] * (xib.dot(fb_.grad[k].cast<double>()) / (xib.squaredNorm() + eps)) * (vi - boundary_.v[b]);
+      const Vec2 xib = xi - boundary_.x[b], vib = vi - boundary_.v[b], gw = fb_.grad[k].cast<double>();
+      const double r2 = xib.squaredNorm() + eps, vx = vib.dot(xib), vb = boundary_.volume[b];
+      Vec2 a = (2.0 * nu * vb * (xib.dot(gw) / r2)) * vib;
+      if (vx < 0.0) a += (avc * rho0 * vb * vx / (r2 * 0.5 * (rhoi + rho0))) * gw;
+      acc += a;
+      if (work) w += a.dot(boundary_.v[b]);
     }
-    a_v[i] = 2.0 * nu * a;
+    a_v[i] = acc;
+    if (work) scratch_.work[i] += dt * mass_ * w;
   });
   parallel_for(n, [&](Index i) { fluid_.v[i] += dt * (a_v[i] + g); });
 }
@@ -514,12 +605,110 @@ void Simulation::prepare_boundary_terms() {
   });
 }
 
+// Density of boundary sample b from its fluid neighbours plus its wall's own share:
+//   rho_b = sum_f m_f W_bf + rho0 sum_b' V_b' W_bb' ~ sum_f m_f W_bf + gamma1 rho0,
+// the second by the definition of V_b (section 4.1; exact for a uniformly sampled wall).
+// A sample continuing the fluid's lattice is then at rest density.
+inline double boundary_density(const NeighborLists& bf, Index b, double mass, double gamma1_rho0) {
+  double rf = 0.0;
+  for (Index k = bf.offset[b]; k < bf.offset[b + 1]; ++k) rf += bf.w[k];
+  return mass * rf + gamma1_rho0;
+}
+
+// Pressure boundaries (Band et al. 2018, "Pressure boundaries for implicit incompressible
+// SPH", ACM TOG 37(2)): the density constraint of each boundary sample with fluid
+// neighbours joins the PPE, so p_b is its Lagrange multiplier and the boundary term of
+// Eq. 24 becomes a constraint force, which does no work while the constraints hold.
+// The sample's counterparts of Eq. 19 and 22, with a_b = 0 (its motion is scripted):
+//   s_b = (rho0 - rho_b) / dt - sum_f m_f (v_b - v*_f) . grad W_bf,
+//   (Ap)_b = -dt sum_f m_f a_f . grad W_bf,
+//   a_bb = d(Ap)_b / dp_b = -dt gamma3 (V_b m / rho0) sum_f |grad W_bf|^2.
+void Simulation::prepare_solved_boundary(double dt) {
+  const SolverSettings& s = settings_;
+  const double rho0 = s.rest_density, g1r = s.gamma1 * rho0, inv_rho0_2 = 1.0 / (rho0 * rho0);
+  const bool thesis_init = s.pressure_init == PressureInit::Thesis;
+  const Index nb = boundary_.size();
+  const double vb_scale = boundary_velocity_in_source_ ? 1.0 : 0.0;
+  scratch_.bnd_s.resize(nb);
+  scratch_.bnd_aii.resize(nb);
+  parallel_for(nb, [&](Index b) {
+    double div = 0.0, grad2 = 0.0, lumped = 0.0;
+    for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) {
+      const Index f = bf_.j[k];
+      const Vec2 gw = bf_.grad[k].cast<double>();
+      div += (vb_scale * boundary_.v[b] - fluid_.v[f]).dot(gw);
+      grad2 += gw.squaredNorm();
+      lumped += gw.dot(scratch_.grad_b[f]);
+    }
+    const double sb = (rho0 - boundary_density(bf_, b, mass_, g1r)) / dt - mass_ * div;
+    // The row's diagonal, or its lumped sum over all samples that share a fluid neighbour
+    // (dt gamma3 m / rho0^2 sum_f grad W_bf . grad_b_f) when larger: samples denser than
+    // the fluid, or a thin plate sampled on both sides, are near-duplicate constraints,
+    // and Jacobi with the plain diagonal overshoots on them by their number and diverges.
+    const double abb = std::min(-dt * s.gamma3 * boundary_.volume[b] / rho0 * mass_ * grad2,
+                                dt * s.gamma3 * mass_ / (rho0 * rho0) * lumped);
+    scratch_.bnd_s[b] = sb;
+    scratch_.bnd_aii[b] = abb;
+    double p0 = abb != 0.0 ? kWarmStartFactor * boundary_.p[b] : 0.0;
+    if (thesis_init) p0 = abb != 0.0 ? std::max(s.omega * sb / abb, 0.0) : 0.0;
+    boundary_.p[b] = p0;
+    scratch_.pb_over_rho2[b] = p0 * inv_rho0_2;
+  });
+}
+
+// Eq. 21 for every boundary sample, from the accelerations a_p of the iteration (all
+// computed before: the sweep has finished), clamped at zero like the fluid's.
+void Simulation::jacobi_update_boundary(const PressureTerms& t) {
+  const double inv_rho0_2 = 1.0 / (settings_.rest_density * settings_.rest_density);
+  parallel_for(boundary_.size(), [&](Index b) {
+    const double abb = scratch_.bnd_aii[b];
+    if (abb == 0.0) return;  // no fluid neighbour: p_b stays 0
+    double ap = 0.0;
+    for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) ap -= scratch_.a_p[bf_.j[k]].dot(bf_.grad[k].cast<double>());
+    ap *= t.dt * t.mass;
+    const double p = std::max(boundary_.p[b] + t.omega / abb * (scratch_.bnd_s[b] - ap), 0.0);
+    boundary_.p[b] = p;
+    scratch_.pb_over_rho2[b] = p * inv_rho0_2;
+  });
+}
+
+// The pressure force's share of the boundaries' work on the fluid: the boundary pairs'
+// term of Eq. 24 (with the pressures the step integrates) times the boundary velocity.
+void Simulation::add_boundary_pressure_work(double dt) {
+  const PressureTerms t = pressure_terms(dt);
+  const std::vector<double>& pr = scratch_.p_over_rho2;
+  parallel_for(fluid_.size(), [&](Index i) {
+    double w = 0.0;
+    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
+      const Index b = fb_.j[k];
+      if (!boundary_.moving[b]) continue;
+      const double pb = t.boundary_field ? scratch_.pb_over_rho2[b] : 0.0;
+      const double c = t.c_gamma3 / settings_.gamma3;  // 2 for mirroring: p_b / rho_b^2 = p_i / rho_i^2
+      const Vec2 a = -(t.gamma3_rho0 * boundary_.volume[b] * (c * pr[i] + pb)) * fb_.grad[k].cast<double>();
+      w += a.dot(boundary_.v[b]);
+    }
+    scratch_.work[i] += dt * mass_ * w;
+  });
+}
+
 // Boundary pressure seen by fluid neighbours, as p_b / rho_b^2 (rho_b = rho0):
+// WCSPH with pressure boundaries: the state equation of section 2.3.1 at rho_b (the
+// sample's share of the energy, so its force is conservative as well);
 // extrapolation, Eq. 25: p_b = (sum_f p_f W_bf + (g - a_b) . sum_f rho_f x_bf W_bf) / sum_f W_bf,
 // clamped at zero like fluid pressures. Mirroring and zero pressure need no pass.
 void Simulation::update_boundary_pressure() {
+  const double rho0 = settings_.rest_density, inv_rho0_2 = 1.0 / (rho0 * rho0);
+  if (settings_.boundary_pressure == BoundaryPressure::Solved && settings_.type == SolverType::WCSPH) {
+    const double k = settings_.stiffness, g1r = settings_.gamma1 * rho0;
+    parallel_for(boundary_.size(), [&](Index b) {
+      const double p = bf_.offset[b] == bf_.offset[b + 1] ? 0.0
+                                                         : std::max(k * (boundary_density(bf_, b, mass_, g1r) / rho0 - 1.0), 0.0);
+      boundary_.p[b] = p;
+      scratch_.pb_over_rho2[b] = p * inv_rho0_2;
+    });
+    return;
+  }
   if (settings_.boundary_pressure != BoundaryPressure::Extrapolation) return;
-  const double inv_rho0_2 = 1.0 / (settings_.rest_density * settings_.rest_density);
   parallel_for(boundary_.size(), [&](Index b) {
     const double ws = scratch_.ext_wsum[b];
     double p = 0.0;
@@ -543,7 +732,8 @@ Simulation::PressureTerms Simulation::pressure_terms(double dt) const {
   t.mass = mass_;
   t.c_gamma3 = (s.boundary_pressure == BoundaryPressure::Mirroring ? 2.0 : 1.0) * s.gamma3;
   t.gamma3_rho0 = s.gamma3 * s.rest_density;
-  t.extrapolate = s.boundary_pressure == BoundaryPressure::Extrapolation;
+  t.boundary_field =
+      s.boundary_pressure == BoundaryPressure::Extrapolation || s.boundary_pressure == BoundaryPressure::Solved;
   t.gamma2 = s.gamma2;
   t.omega = s.omega;
   t.dt = dt;
@@ -558,7 +748,7 @@ Simulation::PressureTerms Simulation::pressure_terms(double dt) const {
   for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) a += (pri + pr[ff_.j[k]]) * ff_.grad[k].cast<double>();
   a *= -t.mass;
   a -= (t.c_gamma3 * pri) * scratch_.grad_b[i];
-  if (t.extrapolate) {
+  if (t.boundary_field) {
     Vec2 ab = Vec2::Zero();
     for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
       const Index b = fb_.j[k];
@@ -744,6 +934,8 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
   scratch_.p_over_rho2.resize(n);
   const bool mirror = s.boundary_pressure == BoundaryPressure::Mirroring;
   const bool extrapolate = s.boundary_pressure == BoundaryPressure::Extrapolation;
+  const bool solved_boundary = s.boundary_pressure == BoundaryPressure::Solved;
+  if (solved_boundary) prepare_solved_boundary(dt);
   const double c = (mirror && s.boundary_diagonal) ? 2.0 : 1.0;
   const bool coupling = extrapolate && s.boundary_diagonal;
   const bool thesis_init = s.pressure_init == PressureInit::Thesis;
@@ -806,16 +998,22 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
   do {
     update_boundary_pressure();
     const double sum = jacobi_sweep(block, terms);
+    if (solved_boundary) jacobi_update_boundary(terms);
     avg = n ? sum / n : 0.0;
     ++l;
   } while ((avg > s.tolerance_percent || l < s.min_iterations) && l < s.max_iterations);
+  // Integrate the accelerations of the final pressures ([Ihm+14a], Algorithm 1); the
+  // loop's a_p belong to the iterate before the last update.
+  update_boundary_pressure();
+  compute_pressure_acceleration();
+  if (has_moving_boundaries()) add_boundary_pressure_work(dt);
   st.iterations = l;
   st.avg_error_percent = avg;
   st.max_error_percent = parallel_max(n, 0.0, [&](Index i) { return scratch_.err[i]; });
 }
 
 // WCSPH (section 2.3.1): p_i = max(k (rho_i / rho0 - 1), 0), then Eq. 24.
-void Simulation::solve_pressure_wcsph(double /*dt*/, StepStats& st) {
+void Simulation::solve_pressure_wcsph(double dt, StepStats& st) {
   const Index n = fluid_.size();
   const double rho0 = settings_.rest_density, k = settings_.stiffness;
   prepare_boundary_terms();
@@ -828,6 +1026,7 @@ void Simulation::solve_pressure_wcsph(double /*dt*/, StepStats& st) {
   });
   update_boundary_pressure();
   compute_pressure_acceleration();
+  if (has_moving_boundaries()) add_boundary_pressure_work(dt);
   st.iterations = 0;
   st.avg_error_percent = st.density_error_percent;
   st.max_error_percent =

@@ -40,6 +40,10 @@ struct SolverScratch {
   std::vector<double> pb_over_rho2;  // p_b / rho0^2 of boundary particles
   std::vector<double> ext_wsum;      // sum_f W_bf of each boundary particle (Eq. 25 denominator)
   std::vector<double> ext_gravity;   // g . sum_f rho_f x_bf W_bf (Eq. 25 hydrostatic term)
+  // Pressure boundaries (BoundaryPressure::Solved): each sample's source term and
+  // diagonal, the counterparts of Eq. 19 and 22 for its density constraint.
+  std::vector<double> bnd_s, bnd_aii;
+  std::vector<double> work;  // boundary work on each fluid particle in this step [J/m]
 };
 
 double lattice_kernel_sum(const CubicSpline2D& kernel);
@@ -94,6 +98,10 @@ class Simulation {
   const BoundaryParticles& boundary() const { return boundary_; }
   const CubicSpline2D& kernel() const { return kernel_; }
   double fluid_mass() const { return mass_; }
+  // Kinetic plus potential energy of the fluid now [J/m] (StepStats::mechanical_energy).
+  double mechanical_energy() const;
+  // Speed c of the artificial viscosity (SolverSettings::sound_speed, resolved) [m/s].
+  double sound_speed() const { return sound_speed_; }
 
   // Test and benchmark hooks.
   void set_brute_force_neighbors(bool on) { brute_force_ = on; }
@@ -120,6 +128,9 @@ class Simulation {
  private:
   // Phases of a step, in the order of Algorithm 2.
   double choose_time_step() const;
+  void advance(double dt, StepStats& st, bool settling);  // one step of Algorithm 2 without time bookkeeping
+  void settle();                                          // TimeSettings::settle, before t = 0
+  void measure_energy(StepStats& st) const;
   void find_neighbors_phase();
   void compute_density();                 // grad W per pair, then Eq. 13 + section 4.1
   void apply_nonpressure(double dt);      // Eq. 12 + gravity: v* = v + dt (a_v + g)
@@ -131,14 +142,17 @@ class Simulation {
 
   // Building blocks of the pressure solvers.
   void prepare_boundary_terms();              // grad_b, Eq. 25 weights
-  void update_boundary_pressure();            // Eq. 25 / 4.2.2 / 4.2.3 -> pb_over_rho2
+  void update_boundary_pressure();            // Eq. 25 / 4.2.2 / 4.2.3 / WCSPH's solved p_b -> pb_over_rho2
+  void prepare_solved_boundary(double dt);    // bnd_s, bnd_aii and p_b^(0) of pressure boundaries
+  void add_boundary_pressure_work(double dt);  // scratch_.work += the pressure force's share
   void compute_pressure_acceleration();       // Eq. 24 -> a_p
   // Constants of Eq. 20, 21, 23, 24 within a step, read once per sweep.
   struct PressureTerms {
     double mass, c_gamma3, gamma3_rho0, gamma2, omega, dt, err_scale;
-    bool extrapolate;
+    bool boundary_field;  // p_b from its own array (extrapolated or solved), not p_i or 0
   };
   PressureTerms pressure_terms(double dt) const;
+  void jacobi_update_boundary(const PressureTerms& t);  // Eq. 21 for every boundary sample's p_b
   Vec2 pressure_acceleration_of(Index i, const PressureTerms& t) const;  // Eq. 24 for one particle
   void jacobi_update_of(Index i, const PressureTerms& t);                 // Eq. 20, 21, 23 for one particle
   Index jacobi_block_size() const;
@@ -158,6 +172,9 @@ class Simulation {
   SolverSettings settings_;
   CubicSpline2D kernel_;
   double mass_;  // fluid particle mass rho0 h^2 [kg/m]
+  double sound_speed_ = 0;   // c of the artificial viscosity [m/s]
+  double wcsph_speed_ = 0;   // sqrt(k / rho0), WCSPH's acoustic time step [m/s]
+  long settle_steps_ = 0;    // steps taken by settle()
 
   FluidParticles fluid_;
   BoundaryParticles boundary_;

@@ -1,0 +1,107 @@
+// Monaghan's (1994) elliptical drop: the exact ODE for the semi-axes, and the simulated
+// drop (scenes/validation/elliptical_drop.json, shortened) against it for both solvers,
+// as `sluice validate elliptical-drop` runs it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "analysis/elliptical_drop.h"
+#include "scene/scene.h"
+
+namespace sluice {
+namespace {
+
+using analysis::ellipse_semi_axes;
+
+TEST(EllipticalDropOde, StartsAsTheCircle) {
+  const auto e = ellipse_semi_axes(2.0, 0.7, 0.0);
+  EXPECT_EQ(e.a, 0.7);
+  EXPECT_EQ(e.b, 0.7);
+  EXPECT_EQ(e.A, 2.0);
+}
+
+// Incompressibility (a b = R0^2) and the kinetic energy, A^2 (a^2 + b^2) = 2 A0^2 R0^2.
+TEST(EllipticalDropOde, ConservesAreaAndEnergy) {
+  for (double t : {0.1, 0.4, 1.0, 3.0}) {
+    const auto e = ellipse_semi_axes(1.0, 1.0, t);
+    EXPECT_NEAR(e.a * e.b, 1.0, 1e-9) << "t = " << t;
+    EXPECT_NEAR(e.A * e.A * (e.a * e.a + e.b * e.b), 2.0, 1e-9) << "t = " << t;
+    EXPECT_LT(e.a, 1.0);
+    EXPECT_GT(e.b, 1.0);
+  }
+}
+
+// Small t: A' = 0 and A'' = -2 A0^3 at t = 0, so A = A0 - A0^3 t^2 + O(t^3) and
+// a = R0 exp(-A0 t + A0^3 t^3 / 3 + O(t^4)), b = R0^2 / a.
+TEST(EllipticalDropOde, SmallTimeExpansion) {
+  const double A0 = 1.5, R0 = 0.8;
+  for (double t : {1e-3, 1e-2, 3e-2}) {
+    const auto e = ellipse_semi_axes(A0, R0, t);
+    const double s = A0 * t;
+    EXPECT_NEAR(e.a, R0 * std::exp(-s + s * s * s / 3), 2 * R0 * s * s * s * s) << "t = " << t;
+    EXPECT_NEAR(e.b, R0 * std::exp(s - s * s * s / 3), 2 * R0 * s * s * s * s) << "t = " << t;
+    EXPECT_NEAR(e.A, A0 * (1 - s * s), 2 * A0 * s * s * s) << "t = " << t;
+  }
+}
+
+// a / R0 depends on A0 t only; RK4 with the default step is converged.
+TEST(EllipticalDropOde, ScalesAndConverges) {
+  const auto e1 = ellipse_semi_axes(1.0, 1.0, 0.4);
+  const auto e2 = ellipse_semi_axes(4.0, 2.5, 0.1);
+  EXPECT_NEAR(e2.a / 2.5, e1.a, 1e-10);
+  EXPECT_NEAR(e2.b / 2.5, e1.b, 1e-10);
+  EXPECT_NEAR(e2.A / 4.0, e1.A, 1e-10);
+  const auto coarse = ellipse_semi_axes(1.0, 1.0, 0.4, 40);
+  EXPECT_NEAR(coarse.a, e1.a, 1e-9);
+  EXPECT_NEAR(coarse.b, e1.b, 1e-9);
+  // b / a reaches about 1.5 at the validation's end time 0.2 s.
+  const auto end = ellipse_semi_axes(1.0, 1.0, 0.2);
+  EXPECT_NEAR(end.b / end.a, 1.484, 1e-3);
+}
+
+const std::string kScene = std::string(SLUICE_SOURCE_DIR) + "/scenes/validation/elliptical_drop.json";
+
+void check_drop(const analysis::EllipticalDropResult& r, const char* solver) {
+  const auto& e = r.series.back();
+  std::printf("[ measured ] elliptical drop %s: h = %g, %ld particles, %ld steps, t = %.3f: a %.5f (ode %.5f, %.3f %%), "
+              "b %.5f (ode %.5f, %.3f %%), %.1f s\n",
+              solver, r.h, r.particles, r.steps, e.t, e.a_sim, e.a_ode, 100 * r.a_error, e.b_sim, e.b_ode,
+              100 * r.b_error, r.wall_seconds);
+  ASSERT_GE(r.series.size(), 2u);
+  EXPECT_EQ(r.series.front().t, 0.0);
+  EXPECT_NEAR(r.series.front().a_sim, r.R0, 1e-12);
+  EXPECT_NEAR(r.series.front().b_sim, r.R0, 1e-12);
+  // The axes stay on x and y (the set-up is symmetric about both).
+  EXPECT_LT(std::abs(e.xy_moment), 1e-3);
+  EXPECT_LE(r.error, analysis::kEllipticalDropBound);
+}
+
+// The bound (1 %) on a coarser drop than the validate command's (h = 0.05, 1264
+// particles, same end time 0.2 s, b/a = 1.48). Measured: IISPH 0.54 %, WCSPH 0.48 %; at
+// h = 0.025 0.57 % / 0.52 %, at 0.0125 0.54 % / 0.53 %. The error does not fall with h:
+// the stretched particle arrangement sums W above rho0 (a square lattice mapped to
+// b/a = 1.48 by +0.9 %), and the solvers expand it to rest density. It passes 1 % at
+// b/a ~ 1.6 (t ~ 0.24 s) and is 3.5-5 % at t = 0.4 s (b/a = 2.15), see the README.
+const std::vector<std::string> kShort{"spacing=0.05"};
+
+TEST(EllipticalDrop, Iisph) {
+  std::vector<std::string> set = kShort;
+  set.push_back("solver.type=iisph");
+  check_drop(analysis::run_elliptical_drop(load_scene(kScene, set), analysis::kEllipticalDropA0), "iisph");
+}
+
+TEST(EllipticalDrop, Wcsph) {
+  std::vector<std::string> set = kShort;
+  const Scene base = load_scene(kScene, set);
+  const auto w = analysis::elliptical_drop_wcsph_overrides(base, analysis::kEllipticalDropA0);
+  set.insert(set.end(), w.begin(), w.end());
+  check_drop(analysis::run_elliptical_drop(load_scene(kScene, set), analysis::kEllipticalDropA0), "wcsph");
+}
+
+TEST(EllipticalDrop, RefusesANonPositiveStrainRate) {
+  EXPECT_THROW(analysis::run_elliptical_drop(load_scene(kScene, kShort), 0.0), SceneError);
+}
+
+}  // namespace
+}  // namespace sluice
