@@ -19,6 +19,14 @@ double max_speed(const Simulation& sim) {
   return v;
 }
 
+double median_speed(const Simulation& sim) {
+  std::vector<double> s;
+  for (const Vec2& u : sim.fluid().v) s.push_back(u.norm());
+  if (s.empty()) return 0;
+  std::nth_element(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(s.size() / 2), s.end());
+  return s[s.size() / 2];
+}
+
 }  // namespace
 
 // --- hydrostatic tank ----------------------------------------------------------------------
@@ -31,6 +39,7 @@ HydrostaticResult run_hydrostatic(const Scene& scene, double width, double avera
   std::vector<double> sum_p, sum_d;
   std::vector<long> count;
   double floor_depth = 0;
+  double bottom_p = 0, bottom_d = 0;  // bottom row: sums of p and of d
   while (!sim.finished()) {
     const StepStats st = sim.step();
     ++r.steps;
@@ -54,9 +63,16 @@ HydrostaticResult run_hydrostatic(const Scene& scene, double width, double avera
       sum_p[b] += f.p[i];
       sum_d[b] += d;
       ++count[b];
+      if (x.y() < h) {
+        bottom_p += f.p[i];
+        bottom_d += d;
+      }
     }
   }
   r.max_speed_end = max_speed(sim);
+  r.median_speed_end = median_speed(sim);
+  r.bottom_row_ratio = bottom_d > 0 ? bottom_p / (rho0 * g * bottom_d) : 0.0;
+  double half_p = 0, half_d = 0;
   // The least-squares slope through the origin of p against d: rho0 g for a hydrostatic
   // column (Eq. 25's boundary extrapolation assumes exactly this profile).
   const double d_max = zero_pressure_wall ? floor_depth - 3 * h : std::numeric_limits<double>::infinity();
@@ -70,6 +86,10 @@ HydrostaticResult run_hydrostatic(const Scene& scene, double width, double avera
     db.ratio = db.pressure / (rho0 * g * db.depth);
     r.bins.push_back(db);
     if (db.depth > floor_depth - 2 * h) r.floor_ratio = std::max(r.floor_ratio, db.ratio);
+    if (db.depth >= 0.5 * floor_depth) {
+      half_p += sum_p[b];
+      half_d += sum_d[b];
+    }
     if (db.depth <= 3 * h || db.depth >= d_max) continue;  // surface rows: p is clamped at 0 there
     sxx += count[b] * db.depth * db.depth;
     sxy += count[b] * db.depth * db.pressure;
@@ -78,6 +98,7 @@ HydrostaticResult run_hydrostatic(const Scene& scene, double width, double avera
       r.worst_depth = db.depth;
     }
   }
+  r.lower_half_ratio = half_d > 0 ? half_p / (rho0 * g * half_d) : 0.0;
   r.slope_error = sxx > 0 ? std::abs(sxy / sxx / (rho0 * g) - 1.0) : std::numeric_limits<double>::infinity();
   return r;
 }
@@ -97,7 +118,7 @@ std::vector<HydrostaticCase> hydrostatic_cases() {
   const std::vector<std::string> iisph{"solver.type=iisph", "solver.tolerance=0.01", "time.dt=1e-3"};
   const std::vector<std::string> wcsph{"solver.type=wcsph", "solver.stiffness=5e5", "time.dt=2e-4"};
   std::vector<HydrostaticCase> cases;
-  for (const char* method : {"extrapolation", "mirroring", "zero"}) {
+  for (const char* method : {"solved", "extrapolation", "mirroring", "zero"}) {
     for (int w = 0; w < 2; ++w) {
       HydrostaticCase c;
       c.name = std::string(w ? "wcsph_" : "iisph_") + method;
@@ -110,6 +131,27 @@ std::vector<HydrostaticCase> hydrostatic_cases() {
     }
   }
   return cases;
+}
+
+bool within(const HydrostaticResult& r, const RestBounds& b) {
+  return r.median_speed_end <= b.median_speed && std::abs(r.lower_half_ratio - 1) <= b.lower_half &&
+         std::abs(r.bottom_row_ratio - 1) <= b.bottom_row;
+}
+
+AtRestResult run_at_rest(const Scene& scene) {
+  Simulation sim(scene);
+  AtRestResult r;
+  const double e0 = sim.mechanical_energy();
+  double iterations = 0;
+  while (!sim.finished()) {
+    iterations += sim.step().iterations;
+    ++r.steps;
+  }
+  r.avg_iterations = r.steps ? iterations / r.steps : 0;
+  r.median_speed_end = median_speed(sim);
+  r.max_speed_end = max_speed(sim);
+  r.energy_drift = sim.mechanical_energy() - e0;
+  return r;
 }
 
 // --- dam break ---------------------------------------------------------------------------------
@@ -138,10 +180,15 @@ DamBreakResult run_dam_break_front(const Scene& scene) {
   const double back = x0 - 0.5 * h;
   r.a = x1 - x0 + h;
   r.height = y1 - y0 + h;
-  // The far wall: the nearest boundary sample beyond the column at floor level.
+  // The far wall: the nearest sample of a boundary at rest beyond the column at floor
+  // level (a gate that is lifted away does not count).
   double wall = std::numeric_limits<double>::infinity();
-  for (const Vec2& b : scene.boundary_x)
+  for (size_t k = 0; k < scene.boundary_x.size(); ++k) {
+    const Vec2& b = scene.boundary_x[k];
+    const Index o = scene.boundary_object.empty() ? 0 : scene.boundary_object[k];
+    if (o < static_cast<Index>(scene.objects.size()) && scene.objects[o].moving) continue;
     if (b.x() > x1 && b.y() > y0 && b.y() < y0 + r.height) wall = std::min(wall, b.x());
+  }
   // The front stops being the experiment's free surge once it is within a few h of the
   // wall (the wall's kernel support reaches 2h ahead of it).
   r.wall_Z = (wall - 3 * h - back) / r.a;

@@ -31,6 +31,11 @@ struct HydrostaticResult {
   double slope_error = 0;      // |fitted dp/dd / (rho0 g) - 1| over the checked bins
   double floor_ratio = 0;      // largest ratio in the bins within 2h of the floor
   double max_speed_end = 0;    // [m/s]
+  double median_speed_end = 0; // [m/s]
+  // Time-averaged p / (rho0 g d) over the lower half of the column (all particles at
+  // least 3h from the side walls and deeper than half the surface height), and over its
+  // bottom row (the particles within h of the floor).
+  double lower_half_ratio = 0, bottom_row_ratio = 0;
 };
 
 // Settles `scene` (a lidless tank whose floor is at y = 0, filled from x = 0 to `width`)
@@ -50,6 +55,25 @@ struct HydrostaticCase {
   bool zero_pressure_wall;
 };
 std::vector<HydrostaticCase> hydrostatic_cases();
+
+// The shipped tank at rest (scenes/hydrostatic.json) with its defaults, the bounds of a
+// fluid that stays at rest: median speed at the end, the lower half's and the bottom
+// row's pressure against rho0 g d.
+struct RestBounds {
+  double median_speed = 0.005;   // [m/s]
+  double lower_half = 0.01;      // |ratio - 1|
+  double bottom_row = 0.03;      // |ratio - 1|
+};
+bool within(const HydrostaticResult& r, const RestBounds& b);
+
+// A scene whose fluid starts at rest and must stay so (the thin plate in still water):
+// the median and largest speed at the end and the energy drift [J/m].
+struct AtRestResult {
+  double median_speed_end = 0, max_speed_end = 0, energy_drift = 0;
+  long steps = 0;
+  double avg_iterations = 0;
+};
+AtRestResult run_at_rest(const Scene& scene);
 
 // --- dam break against Martin & Moyce (1952) -----------------------------------------------
 

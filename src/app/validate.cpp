@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 
@@ -33,7 +34,59 @@ std::string case_label(const std::string& name) {
   return solver + ", " + name.substr(u + 1) + (name.find("zero") != std::string::npos ? " (p_b = 0)" : "");
 }
 
+// A number as a --set value or label: its shortest form ("0.02", not "0.020000").
+std::string number_text(double v) {
+  char buf[32];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
+std::vector<std::string> solvers_of(const ValidateOptions& o) {
+  std::vector<std::string> solvers;
+  if (o.solver != "wcsph") solvers.push_back("iisph");
+  if (o.solver != "iisph") solvers.push_back("wcsph");
+  return solvers;
+}
+
+// The shipped tank (scenes/hydrostatic.json) with its defaults and each solver: it must
+// stay at rest, with the pressure of rho0 g d (analysis::RestBounds). WCSPH takes its
+// acoustic step (the scene's fixed 1 ms is IISPH's). Returns the failures.
+int validate_shipped_tank(const ValidateOptions& o, std::string& csv) {
+  const std::string file = "scenes/hydrostatic.json";
+  const analysis::RestBounds bounds;
+  std::printf("shipped tank %s with its defaults, pressure averaged over the last 0.5 s\n", file.c_str());
+  std::printf("%-6s %6s %14s %14s %14s  %s\n", "solver", "steps", "median_m/s", "lower_half_%", "bottom_row_%", "result");
+  int failed = 0;
+  for (const auto& solver : solvers_of(o)) {
+    std::vector<std::string> set{"solver.type=" + solver};
+    if (solver == "wcsph") set.push_back("time.dt=null");
+    set.insert(set.end(), o.set.begin(), o.set.end());
+    const Scene scene = load_scene(file, set);
+    double width = 0;
+    for (const Vec2& x : scene.fluid_x) width = std::max(width, x.x() + 0.5 * scene.spacing);
+    const auto r = analysis::run_hydrostatic(scene, width, scene.time.duration - 0.5, false);
+    const bool ok = analysis::within(r, bounds);
+    failed += !ok;
+    std::printf("%-6s %6ld %14.5f %14.2f %14.2f  %s\n", solver.c_str(), r.steps, r.median_speed_end,
+                100 * (r.lower_half_ratio - 1), 100 * (r.bottom_row_ratio - 1), ok ? "ok" : "FAILED");
+    char line[256];
+    std::snprintf(line, sizeof line, "%s,%ld,%.6f,%.6f,%.6f,%d\n", solver.c_str(), r.steps, r.median_speed_end,
+                  r.lower_half_ratio, r.bottom_row_ratio, ok ? 1 : 0);
+    csv += line;
+  }
+  std::printf("bounds: median speed <= %g m/s, lower half within %g %%, bottom row within %g %% of rho0 g d\n\n",
+              bounds.median_speed, 100 * bounds.lower_half, 100 * bounds.bottom_row);
+  std::fflush(stdout);
+  return failed;
+}
+
 int validate_hydrostatic(const ValidateOptions& o, const fs::path& dir) {
+  std::string shipped = "solver,steps,median_speed_m_s,lower_half_ratio,bottom_row_ratio,passed\n";
+  const int shipped_failed = o.only.empty() ? validate_shipped_tank(o, shipped) : 0;
+  if (o.only.empty()) write_file_atomic((dir / "hydrostatic_shipped.csv").string(), shipped);
   const std::string scene_file = o.scene.empty() ? "scenes/validation/hydrostatic.json" : o.scene;
   std::printf("hydrostatic tank %s: <p> per depth bin over the last 0.5 s against rho0 g d\n", scene_file.c_str());
   std::printf("%-22s %6s %7s %11s %9s %11s %9s %11s  %s\n", "case", "steps", "capped", "worst_bin_%", "at_d_m",
@@ -88,58 +141,135 @@ int validate_hydrostatic(const ValidateOptions& o, const fs::path& dir) {
   script.insert(0, "set datafile missing \"NaN\"\n");
   report_figure(analysis::run_gnuplot((dir / "hydrostatic.gp").string(), script), dir / "hydrostatic.png");
   std::printf("wrote %s, %s\n", (dir / "hydrostatic.csv").string().c_str(), (dir / "hydrostatic_profile.csv").string().c_str());
+  return failed + shipped_failed ? 1 : 0;
+}
+
+// scenes/hard/thin_plate.json: a plate sampled on its curve (surface_offset 0) in still
+// water must leave the water still: median speed at the end at most 0.005 m/s.
+int validate_thin_plate(const ValidateOptions& o, const fs::path& dir) {
+  const std::string file = o.scene.empty() ? "scenes/hard/thin_plate.json" : o.scene;
+  const double bound = 0.005;
+  std::printf("thin plate %s with its defaults: median speed at the end (bound %g m/s)\n", file.c_str(), bound);
+  std::printf("%-6s %6s %7s %12s %12s %14s  %s\n", "solver", "steps", "iter", "median_m/s", "max_m/s", "energy_drift_J/m",
+              "result");
+  std::string csv = "solver,steps,avg_iterations,median_speed_m_s,max_speed_m_s,energy_drift_J_per_m,passed\n";
+  int failed = 0;
+  for (const auto& solver : solvers_of(o)) {
+    std::vector<std::string> set{"solver.type=" + solver};
+    if (solver == "wcsph") set.push_back("time.dt=null");
+    set.insert(set.end(), o.set.begin(), o.set.end());
+    const auto r = analysis::run_at_rest(load_scene(file, set));
+    const bool ok = r.median_speed_end <= bound;
+    failed += !ok;
+    std::printf("%-6s %6ld %7.2f %12.5f %12.5f %14.4f  %s\n", solver.c_str(), r.steps, r.avg_iterations, r.median_speed_end,
+                r.max_speed_end, r.energy_drift, ok ? "ok" : "FAILED");
+    std::fflush(stdout);
+    char line[256];
+    std::snprintf(line, sizeof line, "%s,%ld,%.3f,%.6f,%.6f,%.6f,%d\n", solver.c_str(), r.steps, r.avg_iterations,
+                  r.median_speed_end, r.max_speed_end, r.energy_drift, ok ? 1 : 0);
+    csv += line;
+  }
+  write_file_atomic((dir / "thin_plate.csv").string(), csv);
+  std::printf("wrote %s\n", (dir / "thin_plate.csv").string().c_str());
   return failed ? 1 : 0;
 }
 
 // WCSPH on the 2 m column: k = 2e6 Pa m keeps the hydrostatic compression near 1 % at the
-// floor; the fixed step keeps 0.4 h / c (c = sqrt(k / rho0)) at h = 0.02.
-const std::vector<std::string> kWcsphDamBreak{"solver.type=wcsph", "solver.stiffness=2e6", "time.cfl=null",
-                                              "time.dt=1e-4"};
+// floor; its step is the acoustic one (0.4 h / (c + v_max), c = sqrt(k / rho0)).
+const std::vector<std::string> kWcsphDamBreak{"solver.type=wcsph", "solver.stiffness=2e6"};
 
+// RMS relative difference of two fronts at the experiment's times (both interpolated).
+double front_difference(const analysis::DamBreakResult& a, const analysis::DamBreakResult& b) {
+  std::vector<double> za, zb;
+  for (const auto& p : a.compared)
+    for (const auto& q : b.compared)
+      if (p.T == q.T) {
+        za.push_back(p.Z_simulated);
+        zb.push_back(q.Z_simulated);
+      }
+  double sum = 0;
+  for (size_t k = 0; k < za.size(); ++k) sum += (za[k] - zb[k]) * (za[k] - zb[k]) / (zb[k] * zb[k]);
+  return za.empty() ? std::nan("") : std::sqrt(sum / static_cast<double>(za.size()));
+}
+
+// The dam break against Martin & Moyce: each solver at h = 0.04, 0.02 and 0.01 (or
+// --spacing) with the instant release (the column starts as a lattice and falls at
+// t = 0), and at 0.02 with the gate release (scenes/validation/dam_break_gate.json: the
+// column settled behind a gate lifted at 4 m/s). Then the differences between
+// resolutions (they must shrink with h) and between the solvers at the finest h.
 int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
-  const std::string scene_file = o.scene.empty() ? "scenes/validation/dam_break_martin_moyce.json" : o.scene;
-  std::vector<std::string> solvers;
-  if (o.solver != "wcsph") solvers.push_back("iisph");
-  if (o.solver != "iisph") solvers.push_back("wcsph");
-  std::string series = "solver,t_s,T,z_m,Z\n";
-  std::string points = "solver,T,Z_experiment,Z_simulated,relative_error\n";
+  const std::string instant_file = o.scene.empty() ? "scenes/validation/dam_break_martin_moyce.json" : o.scene;
+  const std::string gate_file = "scenes/validation/dam_break_gate.json";
+  const std::vector<std::string> solvers = solvers_of(o);
+  const std::vector<double> spacings = o.spacing > 0 ? std::vector<double>{o.spacing} : std::vector<double>{0.04, 0.02, 0.01};
+  struct Run {
+    std::string solver, release, label;
+    double h;
+    analysis::DamBreakResult r;
+  };
+  std::vector<Run> runs;
+  std::string series = "run,solver,release,h,t_s,T,z_m,Z\n";
+  std::string points = "run,solver,release,h,T,Z_experiment,Z_simulated,relative_error\n";
   int failed = 0;
-  for (const auto& solver : solvers) {
-    std::vector<std::string> set;
-    if (solver == "wcsph") set = kWcsphDamBreak;
-    else set.push_back("solver.type=iisph");
-    if (o.spacing > 0) set.push_back("spacing=" + std::to_string(o.spacing));
+  auto run_one = [&](const std::string& solver, const std::string& release, const std::string& file, double h) {
+    std::vector<std::string> set = solver == "wcsph" ? kWcsphDamBreak : std::vector<std::string>{"solver.type=iisph"};
+    set.push_back("spacing=" + number_text(h));
     set.insert(set.end(), o.set.begin(), o.set.end());
-    const Scene scene = load_scene(scene_file, set);
-    std::printf("dam break %s, %s: %zu fluid particles, h = %g m\n", scene_file.c_str(), solver.c_str(),
-                scene.fluid_x.size(), scene.spacing);
-    std::fflush(stdout);
-    const auto r = analysis::run_dam_break_front(scene);
-    std::printf("  column a = %.3f m x %.3f m (n^2 = %.2f); the far wall at Z = %.2f\n", r.a, r.height, r.height / r.a,
-                r.wall_Z);
-    std::printf("  %8s %12s %12s %10s\n", "T", "Z_experiment", "Z_simulated", "error_%");
-    for (const auto& p : r.compared)
-      std::printf("  %8.3f %12.3f %12.3f %10.2f\n", p.T, p.Z_experiment, p.Z_simulated, 100 * p.relative_error);
+    const Scene scene = load_scene(file, set);
+    Run run{solver, release, solver + "_" + release + "_h" + number_text(h), h, analysis::run_dam_break_front(scene)};
+    const auto& r = run.r;
     const bool ok = r.rms_relative_error <= o.max_rms;
     failed += !ok;
-    std::printf("  %s: RMS relative error %.2f %% over %zu points (bound %.1f %%): %s; %ld steps, %.2f iterations, %.1f s\n",
-                solver.c_str(), 100 * r.rms_relative_error, r.compared.size(), 100 * o.max_rms, ok ? "ok" : "FAILED",
-                r.steps, r.avg_iterations, r.wall_seconds);
+    std::printf("%-7s %-8s %6.3f %9zu %7ld %6.2f %10.2f %8.1f  %s\n", solver.c_str(), release.c_str(), h, scene.fluid_x.size(),
+                r.steps, r.avg_iterations, 100 * r.rms_relative_error, r.wall_seconds, ok ? "ok" : "FAILED");
     std::fflush(stdout);
-    for (const auto& s : r.front) {
+    for (const auto& f : r.front) {
       char line[256];
-      std::snprintf(line, sizeof line, "%s,%.6f,%.6f,%.6f,%.6f\n", solver.c_str(), s.t, s.T, s.z, s.Z);
+      std::snprintf(line, sizeof line, "%s,%s,%s,%g,%.6f,%.6f,%.6f,%.6f\n", run.label.c_str(), solver.c_str(), release.c_str(), h,
+                    f.t, f.T, f.z, f.Z);
       series += line;
     }
     for (const auto& p : r.compared) {
       char line[256];
-      std::snprintf(line, sizeof line, "%s,%.4f,%.4f,%.4f,%.6f\n", solver.c_str(), p.T, p.Z_experiment, p.Z_simulated,
-                    p.relative_error);
+      std::snprintf(line, sizeof line, "%s,%s,%s,%g,%.4f,%.4f,%.4f,%.6f\n", run.label.c_str(), solver.c_str(), release.c_str(), h,
+                    p.T, p.Z_experiment, p.Z_simulated, p.relative_error);
       points += line;
     }
+    runs.push_back(std::move(run));
+  };
+  std::printf("dam break against Martin & Moyce (1952), n^2 = 2: RMS relative front error over the measured points "
+              "(bound %.0f %%)\n", 100 * o.max_rms);
+  std::printf("%-7s %-8s %6s %9s %7s %6s %10s %8s  %s\n", "solver", "release", "h_m", "particles", "steps", "iter", "rms_%",
+              "wall_s", "result");
+  for (const auto& solver : solvers) {
+    for (double h : spacings) run_one(solver, "instant", instant_file, h);
+    if (o.scene.empty()) run_one(solver, "gate", gate_file, o.spacing > 0 ? o.spacing : 0.02);
   }
+  // Convergence: each instant run against the next finer one of its solver; the solvers
+  // against each other at the finest h.
+  std::printf("\nRMS relative difference of the fronts at the measured times\n");
+  std::string diffs = "what,a,b,rms_relative_difference\n";
+  auto report = [&](const std::string& what, const Run& a, const Run& b) {
+    const double d = front_difference(a.r, b.r);
+    std::printf("  %-26s %-24s %-24s %7.2f %%\n", what.c_str(), a.label.c_str(), b.label.c_str(), 100 * d);
+    diffs += what + "," + a.label + "," + b.label + "," + number_text(d) + "\n";
+  };
+  const Run* finest[2] = {nullptr, nullptr};
+  for (size_t k = 0; k < runs.size(); ++k) {
+    if (runs[k].release != "instant") continue;
+    finest[runs[k].solver == "wcsph"] = &runs[k];
+    if (k + 1 < runs.size() && runs[k + 1].solver == runs[k].solver && runs[k + 1].release == "instant")
+      report("resolution", runs[k], runs[k + 1]);
+  }
+  if (finest[0] && finest[1]) report("IISPH vs WCSPH (finest h)", *finest[0], *finest[1]);
+  for (const Run& g : runs)
+    if (g.release == "gate")
+      for (const Run& i : runs)
+        if (i.release == "instant" && i.solver == g.solver && i.h == g.h) report("gate vs instant release", g, i);
+
   write_file_atomic((dir / "dam_break_front.csv").string(), series);
   write_file_atomic((dir / "dam_break_points.csv").string(), points);
+  write_file_atomic((dir / "dam_break_differences.csv").string(), diffs);
   std::string exp = "T,Z\n";
   for (const auto& [T, Z] : analysis::martin_moyce_n2_a225()) exp += std::to_string(T) + "," + std::to_string(Z) + "\n";
   write_file_atomic((dir / "martin_moyce_1952.csv").string(), exp);
@@ -147,23 +277,25 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
   gp << "set datafile missing \"NaN\"\n"
      << analysis::gnuplot_png_preamble("dam_break_front.png")
      << "set title \"Dam break surge front against Martin and Moyce (1952), n^2 = 2\"\n"
-        "set xlabel \"T = t (2g/a)^{1/2}\"\nset ylabel \"Z = z / a\"\n"
+        "set xlabel \"T = t (2g/a)^{1/2}\"\nset ylabel \"Z = z / a\"\nset key top left\n"
         "plot \"martin_moyce_1952.csv\" using 1:2 skip 1 with points pt 7 ps 1.5 lc rgb \"black\" title \"experiment (a = 2.25 in)\"";
-  for (const auto& s : solvers)
-    gp << ", \"dam_break_front.csv\" using 3:(strcol(1) eq " << analysis::gnuplot_quote(s) << " ? $5 : NaN) with lines title "
-       << analysis::gnuplot_quote(s == "iisph" ? "IISPH" : "WCSPH");
+  for (const Run& r : runs) {
+    const std::string title = std::string(r.solver == "iisph" ? "IISPH" : "WCSPH") + ", " + r.release + ", h = " + number_text(r.h);
+    gp << ", \"dam_break_front.csv\" using 6:(strcol(1) eq " << analysis::gnuplot_quote(r.label)
+       << " ? $8 : NaN) with lines lw 2 " << (r.release == "gate" ? "dt 2 " : "") << "title " << analysis::gnuplot_quote(title)
+       << " noenhanced";
+  }
   gp << "\n";
   report_figure(analysis::run_gnuplot((dir / "dam_break_front.gp").string(), gp.str()), dir / "dam_break_front.png");
-  std::printf("wrote %s, %s\n", (dir / "dam_break_front.csv").string().c_str(), (dir / "dam_break_points.csv").string().c_str());
+  std::printf("wrote %s, %s, %s\n", (dir / "dam_break_front.csv").string().c_str(), (dir / "dam_break_points.csv").string().c_str(),
+              (dir / "dam_break_differences.csv").string().c_str());
   return failed ? 1 : 0;
 }
 
 // Monaghan's (1994) inviscid elliptical drop: the semi-axes against the exact ODE.
 int validate_elliptical_drop(const ValidateOptions& o, const fs::path& dir) {
   const std::string scene_file = o.scene.empty() ? "scenes/validation/elliptical_drop.json" : o.scene;
-  std::vector<std::string> solvers;
-  if (o.solver != "wcsph") solvers.push_back("iisph");
-  if (o.solver != "iisph") solvers.push_back("wcsph");
+  const std::vector<std::string> solvers = solvers_of(o);
   const double A0 = analysis::kEllipticalDropA0, bound = analysis::kEllipticalDropBound;
   std::printf("elliptical drop %s: u = -A0 x, v = A0 y with A0 = %g 1/s; semi-axes from the second moments against "
               "Monaghan's (1994) ODE\n", scene_file.c_str(), A0);
@@ -256,7 +388,8 @@ int run_validate(const ValidateOptions& o) {
   if (o.what == "hydrostatic") return validate_hydrostatic(o, dir);
   if (o.what == "dam-break") return validate_dam_break(o, dir);
   if (o.what == "elliptical-drop") return validate_elliptical_drop(o, dir);
-  throw view::FlagError("validate", o.what, "hydrostatic, dam-break, elliptical-drop");
+  if (o.what == "thin-plate") return validate_thin_plate(o, dir);
+  throw view::FlagError("validate", o.what, "hydrostatic, dam-break, elliptical-drop, thin-plate");
 }
 
 }  // namespace sluice::app

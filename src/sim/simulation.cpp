@@ -657,18 +657,20 @@ void Simulation::prepare_solved_boundary(double dt) {
 }
 
 // Eq. 21 for every boundary sample, from the accelerations a_p of the iteration (all
-// computed before: the sweep has finished), clamped at zero like the fluid's.
-void Simulation::jacobi_update_boundary(const PressureTerms& t) {
+// computed before: the sweep has finished), clamped at zero like the fluid's. Returns
+// the sum of the samples' predicted compression (Eq. 23) at these accelerations.
+double Simulation::jacobi_update_boundary(const PressureTerms& t) {
   const double inv_rho0_2 = 1.0 / (settings_.rest_density * settings_.rest_density);
-  parallel_for(boundary_.size(), [&](Index b) {
+  return parallel_sum(boundary_.size(), [&](Index b) {
     const double abb = scratch_.bnd_aii[b];
-    if (abb == 0.0) return;  // no fluid neighbour: p_b stays 0
+    if (abb == 0.0) return 0.0;  // no fluid neighbour: p_b stays 0
     double ap = 0.0;
     for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) ap -= scratch_.a_p[bf_.j[k]].dot(bf_.grad[k].cast<double>());
     ap *= t.dt * t.mass;
     const double p = std::max(boundary_.p[b] + t.omega / abb * (scratch_.bnd_s[b] - ap), 0.0);
     boundary_.p[b] = p;
     scratch_.pb_over_rho2[b] = p * inv_rho0_2;
+    return std::max(t.err_scale * (ap - scratch_.bnd_s[b]), 0.0);
   });
 }
 
@@ -935,7 +937,11 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
   const bool mirror = s.boundary_pressure == BoundaryPressure::Mirroring;
   const bool extrapolate = s.boundary_pressure == BoundaryPressure::Extrapolation;
   const bool solved_boundary = s.boundary_pressure == BoundaryPressure::Solved;
-  if (solved_boundary) prepare_solved_boundary(dt);
+  Index active_samples = 0;  // boundary samples with a fluid neighbour
+  if (solved_boundary) {
+    prepare_solved_boundary(dt);
+    for (Index b = 0; b < boundary_.size(); ++b) active_samples += scratch_.bnd_aii[b] != 0.0;
+  }
   const double c = (mirror && s.boundary_diagonal) ? 2.0 : 1.0;
   const bool coupling = extrapolate && s.boundary_diagonal;
   const bool thesis_init = s.pressure_init == PressureInit::Thesis;
@@ -998,8 +1004,10 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
   do {
     update_boundary_pressure();
     const double sum = jacobi_sweep(block, terms);
-    if (solved_boundary) jacobi_update_boundary(terms);
     avg = n ? sum / n : 0.0;
+    // Pressure boundaries: the samples' constraints converge too (their own average), or
+    // their pressures lag the fluid's and stop being constraint forces.
+    if (solved_boundary && active_samples > 0) avg = std::max(avg, jacobi_update_boundary(terms) / active_samples);
     ++l;
   } while ((avg > s.tolerance_percent || l < s.min_iterations) && l < s.max_iterations);
   // Integrate the accelerations of the final pressures ([Ihm+14a], Algorithm 1); the

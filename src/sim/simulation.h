@@ -152,7 +152,7 @@ class Simulation {
     bool boundary_field;  // p_b from its own array (extrapolated or solved), not p_i or 0
   };
   PressureTerms pressure_terms(double dt) const;
-  void jacobi_update_boundary(const PressureTerms& t);  // Eq. 21 for every boundary sample's p_b
+  double jacobi_update_boundary(const PressureTerms& t);  // Eq. 21 for every boundary sample's p_b
   Vec2 pressure_acceleration_of(Index i, const PressureTerms& t) const;  // Eq. 24 for one particle
   void jacobi_update_of(Index i, const PressureTerms& t);                 // Eq. 20, 21, 23 for one particle
   Index jacobi_block_size() const;
