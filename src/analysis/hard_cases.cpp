@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <fstream>
 #include <sstream>
 
@@ -148,11 +149,20 @@ CaseResult run_case(const HardCase& c, const std::string& suite_dir, SolverType 
   r.tolerance = scene.solver.tolerance_percent;
 
   const auto t0 = std::chrono::steady_clock::now();
-  Simulation sim(scene);
-  const Vec2 com0 = centre_of_mass(sim);
-  double sum_err = 0, sum_iter = 0;
   bool stopped = false;
   std::string detector;  // the detector's message when it stopped the run
+  // The scene's settling phase (time.settle) runs in the constructor and may be stopped.
+  std::optional<Simulation> built;
+  try {
+    built.emplace(scene);
+  } catch (const SimulationUnstable& e) {
+    r.result = Outcome::Failed;
+    r.outcome = failed + "stopped by the detector while settling: " + e.what();
+    return r;
+  }
+  Simulation& sim = *built;
+  const Vec2 com0 = centre_of_mass(sim);
+  double sum_err = 0, sum_iter = 0;
   try {
     while (!sim.finished()) {
       const StepStats st = sim.step();
@@ -208,7 +218,7 @@ CaseResult run_case(const HardCase& c, const std::string& suite_dir, SolverType 
     r.outcome = failed + problems;
   } else {
     r.result = Outcome::Held;
-    r.outcome = c.known_limit ? "held (listed as a known limit: update the suite)" : "held";
+    r.outcome = c.known_limit ? "held (a known limit: its full run fails, see its \"what\")" : "held";
   }
   return r;
 }

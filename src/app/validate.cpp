@@ -108,7 +108,7 @@ int validate_hydrostatic(const ValidateOptions& o, const fs::path& dir) {
     failed += !ok;
     std::printf("%-22s %6ld %7ld %11.2f %9.3f %11.1f %9.2f %11.1f  %s\n", c.name.c_str(), r.steps, r.capped,
                 100 * r.worst_bin_error, r.worst_depth, 100 * c.bin_tolerance, 100 * r.slope_error,
-                100 * c.slope_tolerance, ok ? "ok" : "FAILED");
+                100 * c.slope_tolerance, ok ? "ok" : c.known_limit ? "FAILED (known limit)" : "FAILED");
     std::fflush(stdout);
     for (const auto& b : r.bins) {
       char line[256];
