@@ -925,7 +925,10 @@ void Simulation::sweep_range(Index begin, Index end, Index block, const Pressure
 // share of p_i in each p_b of Eq. 25. Each fluid neighbour f holds p_i through
 // a_f = ... - m_i (p_i/rho_i^2) grad W_fi, so
 //   a_ii = dt [ D_i . (sum_f m_f grad W_if + gamma2 grad_b_i) - (m_i^2/rho_i^2) sum_f |grad W_if|^2 ].
-// Eq. 26 as printed is c = 1 and E = 0 (boundary_diagonal = false).
+// Eq. 26 as printed is c = 1 and E = 0 (boundary_diagonal = false). With pressure
+// boundaries p_b is an unknown of its own (prepare_solved_boundary): c = 1, E = 0, and the
+// iteration stops when the samples' average predicted compression is within the
+// tolerance too (st.avg_error_percent is the larger of the two averages).
 void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
   const Index n = fluid_.size();
   const SolverSettings& s = settings_;
