@@ -239,6 +239,19 @@ TEST(CliErrors, UnstableRunKeepsStatsAndSummary) {
   EXPECT_EQ(summary["status"], "unstable");
 }
 
+// A settling phase (time.settle) that goes unstable is reported as such, exit status 4,
+// and the summary records it although no step of the run was taken.
+TEST(CliErrors, UnstableSettlingIsReported) {
+  CaseDir dir;
+  write_text(dir.work() / "x.json", tiny());
+  const Result r = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--set", "time.settle=0.2", "--set",
+                                    "stability.max_error_percent=1e-9"});
+  expect_one_clear_line(r, 4, {"sluice: unstable while settling (time.settle = 0.2 s) at its step "});
+  const auto summary = nlohmann::json::parse(read_text(dir.work() / "out/summary.json"));
+  EXPECT_EQ(summary["status"], "unstable");
+  EXPECT_EQ(summary["frames_written"], 0);
+}
+
 // --overwrite replaces a previous run: its frames beyond the new run's last one go, so
 // that a video made from the folder shows only the new run; other files stay.
 TEST(CliErrors, OverwriteReplacesPreviousRun) {

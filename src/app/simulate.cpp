@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "app/commands.h"
 #include "app/output_dir.h"
@@ -84,8 +85,26 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     std::fprintf(stderr, "sluice: %s: %zu fluid particles (%d removed inside boundaries), %zu boundary particles, %s, %d threads\n",
                  scene.file.c_str(), scene.fluid_x.size(), scene.fluid_removed, scene.boundary_x.size(),
                  to_string(scene.solver.type), omp_get_max_threads());
+  if (!quiet && scene.time.settle > 0)
+    std::fprintf(stderr, "sluice: settling for %g s before t = 0 (time.settle)\n", scene.time.settle);
 
-  Simulation sim(scene);
+  // The settling phase runs in the constructor: if it goes unstable, the run's record
+  // says so before the error reaches main (exit status 4).
+  std::optional<Simulation> built;
+  try {
+    built.emplace(scene);
+  } catch (const SimulationUnstable& e) {
+    const nlohmann::json summary = {{"sluice_version", SLUICE_VERSION},
+                                    {"scene", {{"file", scene.file}, {"name", scene.name}}},
+                                    {"parameters", scene.resolved},
+                                    {"status", "unstable"},
+                                    {"message", e.what()},
+                                    {"frames_written", 0}};
+    write_file_atomic((dir / "summary.json").string(),
+                      summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    throw;
+  }
+  Simulation& sim = *built;
   RunTotals totals;
   totals.initial_energy = sim.mechanical_energy();
   // Resumed: the checkpoint's state and totals, stats.csv cut back to its step, and its
