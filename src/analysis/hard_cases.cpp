@@ -43,12 +43,6 @@ std::vector<SolverType> solvers(const json& j, const std::string& file, const st
   return out;
 }
 
-double kinetic_energy(const Simulation& sim) {
-  double e = 0;
-  for (const Vec2& v : sim.fluid().v) e += v.squaredNorm();
-  return 0.5 * sim.fluid_mass() * e;
-}
-
 Vec2 centre_of_mass(const Simulation& sim) {
   Vec2 c = Vec2::Zero();
   for (const Vec2& x : sim.fluid().x) c += x;
@@ -174,7 +168,7 @@ CaseResult run_case(const HardCase& c, const std::string& suite_dir, SolverType 
       // stays there): the solid-side test of every object at its pose.
       if (st.frame >= 0) r.leaks += count_fluid_in_solids(scene, sim.fluid().x, sim.time());
       if (c.resting && st.frame >= 0) {
-        const double ke = kinetic_energy(sim);
+        const double ke = st.kinetic_energy;
         r.ke_peak = std::max(r.ke_peak, ke);
         r.ke_end = ke;
       }

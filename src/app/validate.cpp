@@ -213,7 +213,7 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
   int failed = 0;
   auto run_one = [&](const std::string& solver, const std::string& release, const std::string& file, double h) {
     std::vector<std::string> set = solver == "wcsph" ? kWcsphDamBreak : std::vector<std::string>{"solver.type=iisph"};
-    set.push_back("spacing=" + number_text(h));
+    set.push_back(number_override("spacing", h));
     set.insert(set.end(), o.set.begin(), o.set.end());
     const Scene scene = load_scene(file, set);
     Run run{solver, release, solver + "_" + release + "_h" + number_text(h), h, analysis::run_dam_break_front(scene)};

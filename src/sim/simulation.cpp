@@ -623,7 +623,7 @@ inline double boundary_density(const NeighborLists& bf, Index b, double mass, do
 //   s_b = (rho0 - rho_b) / dt - sum_f m_f (v_b - v*_f) . grad W_bf,
 //   (Ap)_b = -dt sum_f m_f a_f . grad W_bf,
 //   a_bb = d(Ap)_b / dp_b = -dt gamma3 (V_b m / rho0) sum_f |grad W_bf|^2.
-void Simulation::prepare_solved_boundary(double dt) {
+Index Simulation::prepare_solved_boundary(double dt) {
   const SolverSettings& s = settings_;
   const double rho0 = s.rest_density, g1r = s.gamma1 * rho0, inv_rho0_2 = 1.0 / (rho0 * rho0);
   const bool thesis_init = s.pressure_init == PressureInit::Thesis;
@@ -632,15 +632,17 @@ void Simulation::prepare_solved_boundary(double dt) {
   scratch_.bnd_s.resize(nb);
   scratch_.bnd_aii.resize(nb);
   parallel_for(nb, [&](Index b) {
-    double div = 0.0, grad2 = 0.0, lumped = 0.0;
+    double wsum = 0.0, div = 0.0, grad2 = 0.0, lumped = 0.0;
     for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) {
       const Index f = bf_.j[k];
       const Vec2 gw = bf_.grad[k].cast<double>();
+      wsum += bf_.w[k];
       div += (vb_scale * boundary_.v[b] - fluid_.v[f]).dot(gw);
       grad2 += gw.squaredNorm();
       lumped += gw.dot(scratch_.grad_b[f]);
     }
-    const double sb = (rho0 - boundary_density(bf_, b, mass_, g1r)) / dt - mass_ * div;
+    // rho_b as in boundary_density, summed in the same pass over the sample's pairs.
+    const double sb = (rho0 - (mass_ * wsum + g1r)) / dt - mass_ * div;
     // The row's diagonal, or its lumped sum over all samples that share a fluid neighbour
     // (dt gamma3 m / rho0^2 sum_f grad W_bf . grad_b_f) when larger: samples denser than
     // the fluid, or a thin plate sampled on both sides, are near-duplicate constraints,
@@ -654,6 +656,7 @@ void Simulation::prepare_solved_boundary(double dt) {
     boundary_.p[b] = p0;
     scratch_.pb_over_rho2[b] = p0 * inv_rho0_2;
   });
+  return static_cast<Index>(parallel_sum(nb, [&](Index b) { return scratch_.bnd_aii[b] != 0.0 ? 1.0 : 0.0; }));
 }
 
 // Eq. 21 for every boundary sample, from the accelerations a_p of the iteration (all
@@ -940,11 +943,8 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
   const bool mirror = s.boundary_pressure == BoundaryPressure::Mirroring;
   const bool extrapolate = s.boundary_pressure == BoundaryPressure::Extrapolation;
   const bool solved_boundary = s.boundary_pressure == BoundaryPressure::Solved;
-  Index active_samples = 0;  // boundary samples with a fluid neighbour
-  if (solved_boundary) {
-    prepare_solved_boundary(dt);
-    for (Index b = 0; b < boundary_.size(); ++b) active_samples += scratch_.bnd_aii[b] != 0.0;
-  }
+  // Boundary samples with a fluid neighbour (their rows of the PPE).
+  const Index active_samples = solved_boundary ? prepare_solved_boundary(dt) : 0;
   const double c = (mirror && s.boundary_diagonal) ? 2.0 : 1.0;
   const bool coupling = extrapolate && s.boundary_diagonal;
   const bool thesis_init = s.pressure_init == PressureInit::Thesis;

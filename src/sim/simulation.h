@@ -143,7 +143,7 @@ class Simulation {
   // Building blocks of the pressure solvers.
   void prepare_boundary_terms();              // grad_b, Eq. 25 weights
   void update_boundary_pressure();            // Eq. 25 / 4.2.2 / 4.2.3 / WCSPH's solved p_b -> pb_over_rho2
-  void prepare_solved_boundary(double dt);    // bnd_s, bnd_aii and p_b^(0) of pressure boundaries
+  Index prepare_solved_boundary(double dt);   // bnd_s, bnd_aii, p_b^(0); returns the samples with fluid neighbours
   void add_boundary_pressure_work(double dt);  // scratch_.work += the pressure force's share
   void compute_pressure_acceleration();       // Eq. 24 -> a_p
   // Constants of Eq. 20, 21, 23, 24 within a step, read once per sweep.
