@@ -166,7 +166,7 @@ TEST(SceneErrors, BadInputsNameFilePathAndAllowed) {
       {"unknown top-level key", scene_with(R"("fluids": 1,)"),
        {"scenes/x.json: /fluids: unknown key; allowed keys: name, spacing, solver, time, stability, output, render, fluid, boundaries"}},
       {"unknown nested key", scene_with(R"("solver": {"tolernce": 0.05},)"),
-       {"scenes/x.json: /solver/tolernce: unknown key; allowed keys: type, rest_density, gravity, viscosity, artificial_viscosity, sound_speed, tolerance,"}},
+       {"scenes/x.json: /solver/tolernce: unknown key; allowed keys: type, rest_density, gravity, viscosity, artificial_viscosity, sound_speed, gradient_correction, tolerance,"}},
       {"unknown boundary key", scene_with(R"("boundaries": [{"shape": "circle", "center": [0, 0], "radius": 1, "lid": true}],)"),
        {"/boundaries/0/lid: unknown key; allowed keys: shape, name, center, radius, spacing, fluid_side, layers, layer_spacing"}},
       {"wrong type vec2", scene_with("", R"([{"shape": "rectangle", "min": "abc", "max": [1, 1]}])"),

@@ -105,8 +105,8 @@ HydrostaticResult run_hydrostatic(const Scene& scene, double width, double avera
 
 // IISPH runs at tolerance 0.01 % instead of the default 0.1 %: at the default the 0.5 s
 // average of the pressure is biased by the column's residual compression. The tank
-// settles for 0.5 s first. Bounds on the worst bin / the slope: 10 % / 6 % for IISPH,
-// 6 % / 4 % for WCSPH; the worst bins are the rows next to the floor, where the boundary
+// settles for 0.5 s first. Bounds on the worst bin / the slope: 8 % / 2 % for IISPH,
+// 6 % / 2 % for WCSPH; the worst bins are the rows next to the floor, where the boundary
 // model dominates (docs/validation.md has the measured errors).
 std::vector<HydrostaticCase> hydrostatic_cases() {
   const std::vector<std::string> iisph{"solver.type=iisph", "solver.tolerance=0.01", "time.dt=1e-3"};
@@ -118,10 +118,10 @@ std::vector<HydrostaticCase> hydrostatic_cases() {
       c.name = std::string(w ? "wcsph_" : "iisph_") + method;
       c.set = w ? wcsph : iisph;
       c.set.push_back(std::string("solver.boundary_pressure=") + method);
-      c.bin_tolerance = w ? 0.06 : 0.10;
-      c.slope_tolerance = w ? 0.04 : 0.06;
+      c.bin_tolerance = w ? 0.06 : 0.08;
+      c.slope_tolerance = 0.02;
       c.zero_pressure_wall = std::string(method) == "zero";
-      c.known_limit = w && (std::string(method) == "solved" || std::string(method) == "mirroring");
+      c.known_limit = w && std::string(method) == "solved";  // its bottom row: docs/validation.md
       cases.push_back(c);
     }
   }

@@ -372,6 +372,7 @@ SolverSettings read_solver(Reader& r, const Context& ctx) {
   s.viscosity = r.number("viscosity", s.viscosity, Range::at_least(0, "[m^2/s]"));
   s.artificial_viscosity = r.number("artificial_viscosity", s.artificial_viscosity, Range::at_least(0, "(alpha)"));
   s.sound_speed = r.number("sound_speed", s.sound_speed, Range::at_least(0, "[m/s]"));
+  s.gradient_correction = r.boolean("gradient_correction", s.gradient_correction);
   s.tolerance_percent = r.number("tolerance", s.tolerance_percent, Range::positive("(percent)"));
   s.omega = r.number("omega", s.omega, Range::open_closed(0, 1));
   s.min_iterations = r.integer("min_iterations", s.min_iterations, 1, 10000);

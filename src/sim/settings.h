@@ -42,6 +42,10 @@ struct SolverSettings {
   // Speed c of the artificial viscosity [m/s]; 0: WCSPH's sound speed sqrt(k / rho0),
   // IISPH 10 sqrt(2 g H) (Monaghan's c >= 10 v_max with H the fluid's initial height).
   double sound_speed = 0.0;
+  // Scale every pair gradient by (c_i + c_j) / 2, c_i = 2 / tr(sum_j V_j x_ji (x) grad W_ij),
+  // so that the SPH gradient of a linear field is exact on average over directions
+  // (a scalar, pair-symmetric kernel gradient correction after Bonet & Lok 1999).
+  bool gradient_correction = true;
   // IISPH (chapter 3)
   double tolerance_percent = 0.1;       // average predicted compression error (Eq. 23) [%], > 0
   double omega = 0.5;                   // relaxation of Eq. 21, in (0, 1]

@@ -27,6 +27,7 @@ struct SolverScratch {
   std::vector<Vec2> a_p;        // pressure acceleration (Eq. 11/24)
   std::vector<Vec2> grad_b;     // sum_b m_b grad W_ib, fixed within a step
   std::vector<double> a_ii;     // diagonal (Eq. 22/26)
+  std::vector<double> grad_scale;  // c_i of the gradient correction (compute_density)
   std::vector<double> s;        // source term (Eq. 19)
   std::vector<double> err;      // predicted compression of Eq. 23 [%]
   // Fused Jacobi sweep (Simulation::jacobi_sweep): the bounds of its ranges (one per
@@ -141,6 +142,7 @@ class Simulation {
   void reorder_fluid();
 
   // Building blocks of the pressure solvers.
+  void correct_gradients();                   // pair gradients times (c_i + c_j) / 2
   void prepare_boundary_terms();              // grad_b, Eq. 25 weights
   void update_boundary_pressure();            // Eq. 25 / 4.2.2 / 4.2.3 / WCSPH's solved p_b -> pb_over_rho2
   Index prepare_solved_boundary(double dt);   // bnd_s, bnd_aii, p_b^(0); returns the samples with fluid neighbours
