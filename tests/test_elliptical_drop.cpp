@@ -82,7 +82,7 @@ void check_drop(const analysis::EllipticalDropResult& r, const char* solver) {
 // h = 0.025 0.57 % / 0.52 %, at 0.0125 0.54 % / 0.53 %. The error does not fall with h:
 // the stretched particle arrangement sums W above rho0 (a square lattice mapped to
 // b/a = 1.48 by +0.9 %), and the solvers expand it to rest density. It passes 1 % at
-// b/a ~ 1.6 (t ~ 0.24 s) and is 3.5-5 % at t = 0.4 s (b/a = 2.15), see the README.
+// b/a ~ 1.6 (t ~ 0.24 s) and is 3.5-5 % at t = 0.4 s (b/a = 2.15), see docs/validation.md.
 const std::vector<std::string> kShort{"spacing=0.05"};
 
 TEST(EllipticalDrop, Iisph) {

@@ -17,7 +17,7 @@ class OutputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// stats.csv: one row per step; columns documented in the README. The rows go to
+// stats.csv: one row per step; columns documented in docs/cli.md ("Outputs"). The rows go to
 // `path.tmp`, renamed to `path` by finish() when the run has ended (completed, unstable
 // or failed, as summary.json says), so a stats.csv never belongs to a run still going
 // or killed. Destroyed without finish(), it removes the temporary file.

@@ -22,7 +22,7 @@ namespace sluice {
 // relative error below 6e-8, far under SPH's discretisation error). The pressure solve
 // streams every pair twice per Jacobi iteration, and beyond the last-level cache its
 // speed is the bytes per pair: 12 instead of 20 made the 1M-particle layer's step 12 %
-// and the 130k dam break's 2-thread step about 20 % faster (README, "Speed"). Sums stay
+// and the 130k dam break's 2-thread step about 20 % faster (docs/performance.md). Sums stay
 // in double. grad W_ij = -grad W_ji still holds exactly (rounding is symmetric).
 struct NeighborLists {
   std::vector<Index> offset;  // size n + 1
