@@ -354,6 +354,23 @@ TEST(SceneSampling, BoxWithLidIsClosedLoop) {
   EXPECT_EQ(s.fluid_removed, 0);
 }
 
+// A box obstacle (fluid_side outside) is closed unless told otherwise: without its top it
+// would be a cup inside the fluid that fills with water.
+TEST(SceneSampling, BoxObstacleIsClosedByDefault) {
+  const std::string obstacle = R"({"surface_offset": 0, "shape": "box", "min": [1, 1], "max": [2, 2], "layers": 1, "fluid_side": "outside")";
+  const Scene closed = parse_scene(scene_with(R"("boundaries": [)" + obstacle + "}],"), kFile);
+  const Scene open = parse_scene(scene_with(R"("boundaries": [)" + obstacle + R"(, "lid": false}],)"), kFile);
+  auto top_samples = [](const Scene& s) {
+    std::size_t n = 0;
+    for (const Vec2& p : samples_of(s, 0)) n += std::abs(p.y() - 2.0) < 1e-12 && p.x() > 1 + 1e-9 && p.x() < 2 - 1e-9;
+    return n;
+  };
+  EXPECT_GT(top_samples(closed), 0u);
+  EXPECT_EQ(top_samples(open), 0u);
+  EXPECT_EQ(parse_scene(scene_with(R"("boundaries": [{"shape": "box", "min": [0, 0], "max": [4, 4]}],)"), kFile).objects[0].geometry.lid,
+            false);  // a container stays open at the top
+}
+
 TEST(SceneSampling, BoxSpacingPerWall) {
   const Scene s = parse_scene(scene_with(
       R"("boundaries": [{"surface_offset": 0, "shape": "box", "min": [0, 0], "max": [1, 2], "lid": true, "layers": 1, "spacing": [0.1, 0.5, 0.25, 1]}],)"), kFile);
@@ -502,6 +519,29 @@ TEST(SceneFluid, ShapesAndDuplicates) {
   const Scene triangle = parse_scene(R"({"spacing": 0.01, "fluid": [{"shape": "polygon", "points": [[0, 0], [1, 0], [0, 1]]}]})", kFile);
   EXPECT_NEAR(static_cast<double>(triangle.fluid_x.size()) * 1e-4, 0.5, 0.01);
   for (const Vec2& p : triangle.fluid_x) EXPECT_LE(p.x() + p.y(), 1.0 + 1e-12);
+}
+
+}  // namespace
+}  // namespace sluice
+
+namespace sluice {
+namespace {
+
+// The leak check names the object a particle passed into, where it is and the nearest
+// point of that object's surface.
+TEST(SceneSampling, FluidInSolidsNamesTheObjectAndWhere) {
+  const Scene s = parse_scene(
+      scene_with(R"("boundaries": [{"name": "rock", "shape": "circle", "center": [3, 3], "radius": 0.5}],)"), kFile);
+  const std::vector<Vec2> x{{0.5, 0.5}, {3.0, 3.1}, {3.0, 2.9}};
+  const FluidInSolids r = find_fluid_in_solids(s, x, 0.0);
+  EXPECT_EQ(r.count, 2);
+  EXPECT_EQ(r.first, 1);
+  EXPECT_EQ(r.object, "rock");
+  EXPECT_EQ(r.at, Vec2(3.0, 3.1));
+  EXPECT_NEAR(r.surface.x(), 3.0, 0.02);
+  EXPECT_NEAR(r.surface.y(), 3.5, 0.02);
+  EXPECT_EQ(count_fluid_in_solids(s, x, 0.0), 2);
+  EXPECT_EQ(find_fluid_in_solids(s, {{0.5, 0.5}}, 0.0).count, 0);
 }
 
 }  // namespace

@@ -76,6 +76,18 @@ struct Scene {
 // half a spacing behind their last layer. 0 for a healthy run.
 Index count_fluid_in_solids(const Scene& scene, const std::vector<Vec2>& fluid_x, double t);
 
+// The same count, with the first such particle (in the order of fluid_x): its index, the
+// object it is in, where it is and the nearest point of that object's surface (where it
+// crossed, to within the step's motion), all at time t.
+struct FluidInSolids {
+  Index count = 0;
+  Index first = -1;
+  std::string object;
+  Vec2 at = Vec2::Zero();
+  Vec2 surface = Vec2::Zero();
+};
+FluidInSolids find_fluid_in_solids(const Scene& scene, const std::vector<Vec2>& fluid_x, double t);
+
 // Reads and validates a scene file; each override is "json/path=value" or
 // "json.path=value" (value parsed as JSON, else taken as a string), applied before
 // validation. Throws SceneError.

@@ -1112,11 +1112,13 @@ void Simulation::check_stability(const StepStats& st) const {
   // Walls that no longer hold the fluid (checked at frame times: a pass over every
   // particle and object).
   if (st.frame >= 0) {
-    const Index leaked = count_fluid_in_solids(scene_, fluid_.x, time_);
-    if (leaked > 0 && 100.0 * leaked > scene_.limits.max_leaked_percent * fluid_.size()) {
+    const FluidInSolids leak = find_fluid_in_solids(scene_, fluid_.x, time_);
+    if (leak.count > 0 && 100.0 * leak.count > scene_.limits.max_leaked_percent * fluid_.size()) {
       std::ostringstream os;
-      os << leaked << " of " << fluid_.size() << " fluid particles are past a wall's first sample layer (more than "
-         << "stability.max_leaked_percent = " << scene_.limits.max_leaked_percent << "%)";
+      os << leak.count << " of " << fluid_.size() << " fluid particles are past a wall's first sample layer (more than "
+         << "stability.max_leaked_percent = " << scene_.limits.max_leaked_percent << "%); the first, particle "
+         << fluid_.id[leak.first] << ", is inside boundary \"" << leak.object << "\" at (" << leak.at.x() << ", "
+         << leak.at.y() << "), behind its surface at (" << leak.surface.x() << ", " << leak.surface.y() << ")";
       fail(os.str());
     }
   }
