@@ -183,18 +183,19 @@ TEST(GradedSpacing, NumberEntriesUnchanged) {
 
 // --- boundary samples from a point list -----------------------------------------------------
 
-// Fluid lattice (0.05 + 0.1 i, 0.05 + 0.1 j), h = 0.1: a sample on a lattice point or within
-// h/2 of one removes it; a sample between four lattice points (0.071 from each) removes none.
+// Fluid lattice (0.05 + 0.1 i, 0.05 + 0.1 j), h = 0.1: a sample removes the lattice points
+// closer than 0.9 h: one when on a lattice point, the four around it when between four
+// (0.071 from each), two for (0.95, 0.93) (0.02 and 0.08 away).
 const std::vector<Vec2> kSamples = {{0.05, 0.05}, {0.5, 0.5}, {0.95, 0.93}, {3, 3}};
 
 void expect_point_samples(const Scene& s) {
   ASSERT_EQ(s.objects.size(), 1u);
   EXPECT_EQ(s.objects[0].shape, "points");
   EXPECT_EQ(samples_of(s, 0), kSamples);  // as given: no layers, no offset, no resampling
-  EXPECT_EQ(s.fluid_removed, 2);
-  EXPECT_EQ(s.fluid_x.size(), 98u);
+  EXPECT_EQ(s.fluid_removed, 7);
+  EXPECT_EQ(s.fluid_x.size(), 93u);
   for (const Vec2& x : s.fluid_x)
-    for (const Vec2& p : kSamples) EXPECT_GE((x - p).norm(), 0.05 * (1 - 1e-6));
+    for (const Vec2& p : kSamples) EXPECT_GE((x - p).norm(), 0.09 * (1 - 1e-6));
 }
 
 TEST(PointSamples, InlineList) {
@@ -206,11 +207,12 @@ TEST(PointSamples, InlineList) {
   EXPECT_FALSE(r.contains("layers"));  // the shape has none
   EXPECT_EQ(parse_scene(s.resolved.dump(), "resolved.json").boundary_x, s.boundary_x);
 
-  // The shape has no inside: fluid enclosed by a ring of samples stays (only what is
-  // within h/2 of a sample goes), and a named object keeps its name.
+  // The shape has no inside: fluid enclosed by a ring of samples stays (only the four
+  // lattice points around each sample go), and a named object keeps its name.
   const Scene ring = parse_scene(boundary(R"({"shape": "points", "name": "ring", "samples": [[0.2, 0.2], [0.8, 0.2], [0.8, 0.8], [0.2, 0.8]]})"), kFile);
   EXPECT_EQ(ring.objects[0].name, "ring");
-  EXPECT_EQ(ring.fluid_removed, 0);
+  EXPECT_EQ(ring.fluid_removed, 16);
+  EXPECT_EQ(ring.fluid_near_samples, 16);
 }
 
 TEST(PointSamples, FromFileRelativeToScene) {

@@ -350,8 +350,11 @@ TEST(SceneSampling, BoxWithLidIsClosedLoop) {
   }
   EXPECT_EQ(on_box, 40u);
   EXPECT_EQ(outside, 48u);
-  EXPECT_EQ(s.fluid_x.size(), 100u);
-  EXPECT_EQ(s.fluid_removed, 0);
+  // Samples on the surface (surface_offset 0): the lattice's outer ring, h/2 from them,
+  // would start compressed and is removed.
+  EXPECT_EQ(s.fluid_x.size(), 64u);
+  EXPECT_EQ(s.fluid_removed, 36);
+  EXPECT_EQ(s.fluid_near_samples, 36);
 }
 
 // A box obstacle (fluid_side outside) is closed unless told otherwise: without its top it
@@ -406,7 +409,7 @@ TEST(SceneSampling, LayersGoAwayFromFluid) {
       const double linf = std::max(std::abs(p.x() - 3.5), std::abs(p.y() - 3.5));
       EXPECT_TRUE(std::abs(linf - 0.5) < 1e-12 || std::abs(linf - 0.6) < 1e-12) << p.transpose();
     }
-    EXPECT_EQ(c.fluid_x.size(), 100u);
+    EXPECT_EQ(c.fluid_x.size(), 64u);  // the outer ring, h/2 from the samples, is removed
   }
 
   // Circle: obstacle layers inside, container layers outside.
@@ -542,6 +545,25 @@ TEST(SceneSampling, FluidInSolidsNamesTheObjectAndWhere) {
   EXPECT_NEAR(r.surface.y(), 3.5, 0.02);
   EXPECT_EQ(count_fluid_in_solids(s, x, 0.0), 2);
   EXPECT_EQ(find_fluid_in_solids(s, {{0.5, 0.5}}, 0.0).count, 0);
+}
+
+}  // namespace
+}  // namespace sluice
+
+namespace sluice {
+namespace {
+
+// Fluid closer than 0.9 spacings to a boundary sample would start compressed: it is
+// removed and counted, and what stays keeps that distance from every sample.
+TEST(SceneSampling, FluidNearSamplesIsRemovedAndCounted) {
+  const Scene s = parse_scene(scene_with(
+      R"("boundaries": [{"shape": "circle", "center": [0.5, 0.5], "radius": 0.23, "surface_offset": 0, "layers": 1}],)"), kFile);
+  EXPECT_GT(s.fluid_near_samples, 0);
+  EXPECT_LE(s.fluid_near_samples, s.fluid_removed);
+  double closest = std::numeric_limits<double>::infinity();
+  for (const Vec2& f : s.fluid_x)
+    for (const Vec2& b : s.boundary_x) closest = std::min(closest, (f - b).norm());
+  EXPECT_GE(closest, shapes::kMinSampleDistance * s.spacing * (1 - 1e-6));
 }
 
 }  // namespace

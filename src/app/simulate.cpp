@@ -85,6 +85,9 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     std::fprintf(stderr, "sluice: %s: %zu fluid particles (%d removed inside boundaries), %zu boundary particles, %s, %d threads\n",
                  scene.file.c_str(), scene.fluid_x.size(), scene.fluid_removed, scene.boundary_x.size(),
                  to_string(scene.solver.type), omp_get_max_threads());
+  if (!quiet && scene.fluid_near_samples > 0)
+    std::fprintf(stderr, "sluice: note: %d of the removed fluid particles were closer than %g spacings to a boundary sample "
+                 "(they would start compressed)\n", scene.fluid_near_samples, shapes::kMinSampleDistance);
   if (!quiet && scene.time.settle > 0)
     std::fprintf(stderr, "sluice: settling for %g s before t = 0 (time.settle)\n", scene.time.settle);
 
@@ -120,6 +123,7 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
       {"threads", omp_get_max_threads()},
       {"fluid_particles", scene.fluid_x.size()},
       {"fluid_removed", scene.fluid_removed},
+      {"fluid_removed_near_samples", scene.fluid_near_samples},
       {"boundary_particles", scene.boundary_x.size()},
       {"frames", sim.frame_count() + 1},
   };

@@ -1038,7 +1038,8 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
   }
   if (blocks.size() > 1) shapes::merge_duplicates(scene.fluid_x, scene.fluid_v, h, 1e-9 * h);
   const std::size_t lattice_points = scene.fluid_x.size();
-  scene.fluid_removed = shapes::remove_covered_fluid(scene.fluid_x, scene.fluid_v, walls, scene.boundary_x, h);
+  scene.fluid_removed = shapes::remove_covered_fluid(scene.fluid_x, scene.fluid_v, walls, scene.boundary_x, h,
+                                                     &scene.fluid_near_samples);
   if (scene.fluid_x.empty())
     ctx.fail("/fluid", "the scene has no fluid particles (" + std::to_string(lattice_points) +
                            (lattice_points ? " lattice points, all removed inside boundaries)"

@@ -65,6 +65,7 @@ struct Scene {
   std::vector<Index> boundary_object;      // object index of each boundary sample
   std::vector<BoundaryObject> objects;
   Index fluid_removed = 0;                 // lattice points dropped inside boundary bands
+  Index fluid_near_samples = 0;            // of those, dropped only as closer than 0.9 h to a sample
 
   Vec2 bounds_min{0, 0}, bounds_max{0, 0};  // box around all particles at t = 0
   nlohmann::json resolved;                  // the scene with every default filled in

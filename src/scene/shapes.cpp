@@ -317,8 +317,10 @@ bool BoundaryShape::on_solid_side(const Vec2& p, double extra) const {
 
 Index remove_covered_fluid(std::vector<Vec2>& x, std::vector<Vec2>& v,
                            const std::vector<BoundaryShape>& boundaries,
-                           const std::vector<Vec2>& samples, double h) {
-  const double r = 0.5 * h * (1 - 1e-6), r2 = r * r;
+                           const std::vector<Vec2>& samples, double h, Index* near_samples) {
+  // Closer than 0.9 h to a sample, a particle starts compressed (its density overshoots
+  // rho0) and is blown off the wall at the first step.
+  const double r = 0.5 * h * (1 - 1e-6), rs = kMinSampleDistance * h * (1 - 1e-6), rs2 = rs * rs;
   CellGrid sample_grid(h), curve_grid(h);
   for (std::size_t i = 0; i < samples.size(); ++i) sample_grid.insert(samples[i], static_cast<Index>(i));
   std::vector<std::pair<Vec2, Vec2>> pieces;
@@ -331,13 +333,15 @@ Index remove_covered_fluid(std::vector<Vec2>& x, std::vector<Vec2>& v,
                       static_cast<Index>(i));
 
   std::size_t kept = 0;
+  Index near = 0;
   for (std::size_t i = 0; i < x.size(); ++i) {
     const Vec2 p = x[i];
     const bool covered =
         std::any_of(boundaries.begin(), boundaries.end(), [&](const BoundaryShape& b) { return b.on_solid_side(p, 0.5 * h); }) ||
-        sample_grid.any_near(p, [&](Index k) { return (samples[k] - p).squaredNorm() < r2; }) ||
         curve_grid.any_near(p, [&](Index k) { return point_segment_distance(p, pieces[k].first, pieces[k].second) < r; });
-    if (covered) continue;
+    const bool close = !covered && sample_grid.any_near(p, [&](Index k) { return (samples[k] - p).squaredNorm() < rs2; });
+    near += close ? 1 : 0;
+    if (covered || close) continue;
     x[kept] = x[i];
     v[kept] = v[i];
     ++kept;
@@ -345,6 +349,7 @@ Index remove_covered_fluid(std::vector<Vec2>& x, std::vector<Vec2>& v,
   const auto removed = static_cast<Index>(x.size() - kept);
   x.resize(kept);
   v.resize(kept);
+  if (near_samples) *near_samples = near;
   return removed;
 }
 

@@ -105,11 +105,14 @@ void sample_chain(const std::vector<Vec2>& points, bool closed, const std::vecto
 // n = max(3, round(perimeter / spacing)) points, uniform in arc length, starting at angle 0.
 void sample_ellipse(const Vec2& center, const Vec2& radii, double spacing, std::vector<Vec2>& out);
 
-// Removes the fluid particles that are on a boundary's solid side or closer than
-// 0.5 * h * (1 - 1e-6) to any boundary sample or boundary curve; returns how many.
+// Removes the fluid particles that are on a boundary's solid side, closer than
+// 0.5 * h * (1 - 1e-6) to a boundary curve or closer than kMinSampleDistance * h to a
+// boundary sample; returns how many. near_samples (when given) gets how many of them
+// were removed only for their distance to a sample.
+constexpr double kMinSampleDistance = 0.9;
 Index remove_covered_fluid(std::vector<Vec2>& x, std::vector<Vec2>& v,
                            const std::vector<BoundaryShape>& boundaries,
-                           const std::vector<Vec2>& samples, double h);
+                           const std::vector<Vec2>& samples, double h, Index* near_samples = nullptr);
 
 // Removes points within tol of an earlier point (keeps the first); returns how many.
 Index merge_duplicates(std::vector<Vec2>& x, std::vector<Vec2>& v, double cell, double tol);
