@@ -205,7 +205,10 @@ int run_montage(const MontageOptions& o) {
                         " pixels; the limit is " + std::to_string(kMaxMontageSide) +
                         " on each side (use a smaller --cell, other --cols, or fewer --times)");
   std::vector<Scene> scenes;
-  for (size_t v = 0; v < count; ++v) scenes.push_back(load_variant(o, times, vary, v));
+  for (size_t v = 0; v < count; ++v) {
+    scenes.push_back(load_variant(o, times, vary, v));
+    check_memory(scenes.back());
+  }
 
   ImageOptions image;
   image.resolution = o.cell;

@@ -210,6 +210,7 @@ int run_still(const StillOptions& o) {
   const ImageConfig config = resolve_image(o.image, scene);
   const fs::path out = o.output.empty() ? fs::path(scene.output.directory) / "still.png" : fs::path(o.output);
   check_png_path(out);
+  check_memory(scene);
   if (out.has_parent_path()) make_directory(out.parent_path());
   FrameRenderer renderer(config.frame);
   Simulation sim(scene);
