@@ -481,7 +481,7 @@ TEST(Reliability, SimulateOnAFullDiskKeepsTheRecord) {
   expect_failed_run_kept(dir, r, "out/stats.csv");
 }
 
-TEST(Reliability, RenderOnAFullDiskKeepsTheRecord) {
+TEST(RenderReliability, RenderOnAFullDiskKeepsTheRecord) {
   CaseDir dir;
   write_text(dir.work() / "x.json", tiny());
   test::Limits limits;
@@ -496,7 +496,7 @@ TEST(Reliability, RenderOnAFullDiskKeepsTheRecord) {
 
 // A frame that cannot be written: exit 3 naming it (not 6, "no EGL"), no frame_*.png.tmp,
 // and frames_written counts the PNGs there are.
-TEST(Reliability, FrameThatCannotBeWrittenExits3) {
+TEST(RenderReliability, FrameThatCannotBeWrittenExits3) {
   CaseDir dir;
   write_text(dir.work() / "x.json", tiny());
   test::Limits limits;
@@ -510,7 +510,7 @@ TEST(Reliability, FrameThatCannotBeWrittenExits3) {
   EXPECT_EQ(summary["frames_written"], count_pngs(dir.work() / "out/frames"));
 }
 
-TEST(Reliability, StillMontageAndDiffOnAFullDiskExit3) {
+TEST(RenderReliability, StillMontageAndDiffOnAFullDiskExit3) {
   CaseDir dir;
   write_text(dir.work() / "x.json", tiny());
   // Noise: the diff image does not compress below the limit.
@@ -555,7 +555,7 @@ bool wait_for_file(const fs::path& p, double seconds) {
 // SIGINT and SIGTERM stop a real render at the next step: exit 130 / 143, the record says
 // "interrupted" with the step and the time and how to resume, stats.csv, the frames and
 // the checkpoints stay, nothing partial; and --resume finishes the run.
-TEST(Reliability, SignalsStopARenderAndKeepItsRecord) {
+TEST(RenderReliability, SignalsStopARenderAndKeepItsRecord) {
   for (const int signal : {SIGINT, SIGTERM}) {
     SCOPED_TRACE(signal == SIGINT ? "SIGINT" : "SIGTERM");
     CaseDir dir;
@@ -590,7 +590,7 @@ TEST(Reliability, SignalsStopARenderAndKeepItsRecord) {
 
 // 11: SIGTERM while ffmpeg encodes stops ffmpeg too (no orphan), removes its partial file,
 // and the summary says "interrupted" with the command that makes the video.
-TEST(Reliability, SigtermWhileEncodingStopsFfmpeg) {
+TEST(RenderReliability, SigtermWhileEncodingStopsFfmpeg) {
   CaseDir dir;
   write_text(dir.work() / "x.json", tiny());
   // A stand-in ffmpeg that starts its output file and then takes its time.
