@@ -3,9 +3,8 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include <cmath>
-
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -36,7 +35,7 @@ std::string number_override(const std::string& path, double value) {
 namespace {
 
 // The command that continues an interrupted run, for summary.json.
-std::string json_command(const std::string& command, const fs::path& dir) {
+std::string resume_command(const std::string& command, const fs::path& dir) {
   return "sluice " + command + " --resume " + dir.string();
 }
 
@@ -52,10 +51,6 @@ std::string clock_string(double seconds) {
   std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
   return buf;
 }
-
-}  // namespace
-
-namespace {
 
 // A figure in MiB for messages.
 std::string mib(double bytes) {
@@ -238,7 +233,7 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
                                 (resumable ? ", the checkpoints" : "") + " and the output up to frame " +
                                 std::to_string(sim.frame()) + " are kept in " + dir.string() + "; " + how;
     summary["interrupted"] = {{"signal", signal_name(signal)}, {"step", sim.steps()}, {"time", sim.time()},
-                              {"resume", resumable ? nlohmann::json(json_command(control.command, dir)) : nlohmann::json(nullptr)}};
+                              {"resume", resumable ? nlohmann::json(resume_command(control.command, dir)) : nlohmann::json(nullptr)}};
     finish_files("interrupted", message);
     throw Interrupted(signal, message);
   };
