@@ -7,8 +7,10 @@
 # Builds with Debian's clang (installed with apt-get when missing and run as root) and
 # -fsanitize=fuzzer,address,undefined into build-fuzz/, from the library sources the
 # parser needs (no CMake: the fuzzer must not pick up the project's GCC build). The
-# corpus (build-fuzz/corpus) is seeded from scenes/*.json and scenes/hard/*.json and
-# kept between runs; a crashing, leaking, too slow or too hungry input is saved as
+# corpus (build-fuzz/corpus) is seeded from fuzz/corpus/ (kept in the repository),
+# scenes/*.json and scenes/hard/*.json and kept between runs; the random seed is fixed
+# (FUZZ_SEED, default 1) so that CI runs start alike. To refresh the kept corpus after a
+# long run: build-fuzz/scene_fuzzer -merge=1 fuzz/corpus build-fuzz/corpus. A crashing, leaking, too slow or too hungry input is saved as
 # build-fuzz/artifacts/{crash,leak,timeout,oom}-<hash>, and libFuzzer stops at the
 # first one. Exit status: 0 when nothing was found, 1 otherwise.
 set -euo pipefail
@@ -42,8 +44,8 @@ if [ ! -x "$out/scene_fuzzer" ] || [ -n "$(find src fuzz -newer "$out/scene_fuzz
     "${sources[@]}" -o "$out/scene_fuzzer"
 fi
 
-# Seeds: every shipped scene; the corpus keeps what earlier runs found.
-cp scenes/*.json scenes/hard/*.json "$out/corpus/"
+# Seeds: the kept corpus and every shipped scene; build-fuzz/corpus keeps what earlier runs found.
+cp fuzz/corpus/* scenes/*.json scenes/hard/*.json "$out/corpus/"
 
 log="$out/fuzz.log"
 echo "fuzz: running for $seconds s (log: $log)"
@@ -51,7 +53,7 @@ set +e
 # -timeout: a unit over 30 s is a hang (the largest scenes the limits allow take seconds
 # under ASan); -rss_limit_mb: more than 4 GiB for one scene is a finding.
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-  "$out/scene_fuzzer" "$out/corpus" -dict=fuzz/scene.dict -max_total_time="$seconds" \
+  "$out/scene_fuzzer" "$out/corpus" -dict=fuzz/scene.dict -max_total_time="$seconds" -seed="${FUZZ_SEED:-1}" \
   -timeout=30 -rss_limit_mb=4096 -max_len=8192 -print_final_stats=1 \
   -artifact_prefix="$out/artifacts/" >"$log" 2>&1
 status=$?

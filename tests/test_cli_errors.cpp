@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "render/image.h"
 #include "scene/scene.h"
 #include "test_process.h"
 
@@ -107,7 +109,7 @@ std::vector<Case> cases() {
       {"empty file", {{"empty.json", ""}}, {"simulate", "empty.json", "-q"}, 2,
        {"empty.json:1:1: JSON parse error", "unexpected end of input"}},
       {"non-object root", {{"root.json", "[1, 2]"}}, {"simulate", "root.json", "-q"}, 2,
-       {"root.json: /: expected an object, got [1,2]"}},
+       {"root.json: the scene must be a JSON object {...}, got [1,2]"}},
       {"unknown key", {{"x.json", tiny(R"("solver": {"tolerence": 0.1},)")}}, {"simulate", "x.json", "-q"}, 2,
        {"x.json: /solver/tolerence: unknown key; allowed keys: type, rest_density", "tolerance"}},
       {"wrong type", {{"x.json", tiny(R"("stability": {"bounds_margin": "far"},)")}}, {"simulate", "x.json", "-q"}, 2,
@@ -192,6 +194,84 @@ std::vector<Case> cases() {
        {"render", "x.json", "-q", "-o", "out"}, 3, {"out: output directory holds a previous run (stats.csv, summary.json)", "--overwrite"}},
       {"killed run's temporary stats", {{"x.json", ok}, {"renders/tiny/stats.csv.tmp", "step\n1\n"}}, {"simulate", "x.json", "-q"}, 3,
        {"renders/tiny: output directory holds a previous run (stats.csv.tmp)", "--overwrite"}},
+
+      // --- issue 19: hostile testing ----------------------------------------------------------
+      // 2: --overwrite must not delete the input
+      {"scene among the files --overwrite removes", {{"out/summary.json", ok}},
+       {"simulate", "out/summary.json", "-q", "-o", "out", "--overwrite"}, 3,
+       {"sluice: output error: out/summary.json: --overwrite would delete the scene file out/summary.json"}},
+      {"compare --diff onto an input", {{"a.png", "x"}, {"b.png", "y"}}, {"compare", "a.png", "b.png", "--diff", "a.png"}, 3,
+       {"sluice: output error: a.png: --diff names the input image a.png"}},
+      // 3: steps that never end
+      {"too many steps", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "time.dt=1e-9"}, 2,
+       {"x.json: /time/dt: dt 1e-09 s for 0.02 s (settle + duration) makes at least 20000000 steps; the limit is 10000000"}},
+      {"dt_min that does not advance the time", {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "time.dt=null", "--set", "time.dt_min=1e-320"}, 2,
+       {"x.json: /time/dt_min: value", "does not advance the time at t = 0.02 s in double precision; must be > "}},
+      {"dt_min = dt_max = 1e-320", {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "time.dt=null", "--set", "time.dt_min=1e-320", "--set", "time.dt_max=1e-320"}, 2,
+       {"x.json: /time/dt_max: dt_max", "makes at least inf steps; the limit is 10000000"}},
+      // 4: --frames past the end
+      {"--frames past the end", {{"x.json", ok}}, {"render", "x.json", "-q", "--frames", "5:10"}, 1,
+       {"sluice: error: --frames 5:10: the scene's last frame is 1 (time.duration 0.02 s at 50 frames/s); allowed: 0 <= A <= B <= 1"}},
+      {"--frames beyond 32 bits", {{"x.json", ok}}, {"render", "x.json", "-q", "--frames", "0:2147483648"}, 1,
+       {"--frames 0:2147483648: the scene's last frame is 1"}},
+      // 5: a name that leaves renders/
+      {"name with ../", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "name=../../etc/x"}, 2,
+       {"x.json: /name: invalid value \"../../etc/x\"; a name must not contain '/'"}},
+      // 6: colour ranges that are not numbers
+      {"--range -inf:inf", {{"x.json", ok}}, {"render", "x.json", "-q", "--range=-inf:inf"}, 1,
+       {"--range -inf:inf: expected lo:hi, finite numbers with lo < hi and hi - lo finite"}},
+      {"--range nan:1", {{"x.json", ok}}, {"render", "x.json", "-q", "--range=nan:1"}, 1, {"--range nan:1: expected lo:hi"}},
+      {"render.range +-1e308", {{"x.json", tiny(R"("render": {"range": [-1e308, 1e308]},)")}}, {"render", "x.json", "-q"}, 2,
+       {"x.json: /render/range: range [-1e+308,1e+308] must be [lo, hi] with lo < hi and hi - lo finite"}},
+      // 7: --max-fraction nan
+      {"compare --max-fraction nan", {{"a.png", "x"}}, {"compare", "a.png", "a.png", "--max-fraction", "nan"}, 1,
+       {"sluice: --max-fraction: expected a number >= 0 and <= 1, got 'nan'"}},
+      // 8: a polygon without area
+      {"zero-area fluid polygon", {{"x.json", tiny("", R"([{"shape": "polygon", "points": [[0, 0], [0.3, 0.3], [0.15, 0.15]]}])")}},
+       {"simulate", "x.json", "-q"}, 2,
+       {"x.json: /fluid: the scene has no fluid particles (0 lattice points: the fluid blocks are empty or have no area"}},
+      // 12: a polyline running back over itself
+      {"self-overlapping polyline",
+       {{"x.json", tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
+                        R"([{"shape": "box", "min": [0, 0], "max": [0.5, 0.5]},
+                            {"shape": "polyline", "points": [[0, -0.2], [1, -0.2], [0.5, -0.2]]}])")}},
+       {"simulate", "x.json", "-q"}, 2,
+       {"x.json: /boundaries/1/points: segment 0 crosses or runs along another segment; the polyline must not intersect or overlap itself"}},
+      // 13: compare's inputs have their own exit status
+      {"compare: missing image", {{"a.png", "x"}}, {"compare", "nope.png", "a.png"}, 8,
+       {"sluice: input image error: nope.png: cannot open PNG: No such file or directory"}},
+      {"compare: not a PNG", {{"a.png", "not a png"}}, {"compare", "a.png", "a.png"}, 8,
+       {"sluice: input image error: a.png: cannot read PNG: "}},
+      {"compare: truncated PNG", {{"a.png", std::string("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR", 16)}}, {"compare", "a.png", "a.png"}, 8,
+       {"sluice: input image error: a.png: cannot read PNG: "}},
+      // 14: a duration too short for a step
+      {"tiny duration", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--duration", "1e-300"}, 2,
+       {"x.json: /time/duration: value 1e-300 is out of range; must be >= 1e-06 [s]"}},
+      {"tiny still time", {{"x.json", ok}}, {"still", "x.json", "--time", "1e-300"}, 1,
+       {"sluice: error: --time 1e-300: allowed: 0, or 1e-06 s to time.duration"}},
+      // 16, 17: still and montage check their sizes and times before running
+      {"still --time 1e308", {{"x.json", ok}}, {"still", "x.json", "--time", "1e308"}, 1,
+       {"sluice: error: --time 1e+308: the time is after the scene's end; allowed: 0 to time.duration = 0.02 s"}},
+      {"still --time after the end", {{"x.json", ok}}, {"still", "x.json", "--time", "0.05"}, 1,
+       {"--time 0.05: the time is after the scene's end"}},
+      {"montage of 16384x16384 cells", {{"x.json", ok}}, {"montage", "x.json", "--times", "0", "--cell", "16384x16384"}, 1,
+       {"sluice: error: --cell 16384x16384: the montage would be ", "the limit is 16384 on each side"}},
+      {"montage --times in hexadecimal", {{"x.json", ok}}, {"montage", "x.json", "--times", "0x1"}, 1,
+       {"sluice: error: --times 0x1: expected simulated times"}},
+      // 17: smaller cases
+      {"non-object root with --duration", {{"root.json", "[]"}}, {"simulate", "root.json", "-q", "--duration", "0.01"}, 2,
+       {"sluice: scene error: root.json: the scene must be a JSON object {...}, got []"}},
+      {"number overflow", {{"x.json", "{\"spacing\": 0.05,\n \"time\": {\"duration\": 1e999}}"}}, {"simulate", "x.json", "-q"}, 2,
+       {"sluice: scene error: x.json:2:23: JSON parse error: number overflow parsing '1e999'"}},
+      {"points file /dev/null", {{"x.json", tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
+                                                  R"([{"shape": "points", "file": "/dev/null"}])")}},
+       {"simulate", "x.json", "-q"}, 2, {"x.json: /boundaries/0/file: \"/dev/null\" is not a regular file"}},
+      {"bytes after a NUL", {{"x.json", ok + std::string(1, '\0') + "garbage"}}, {"simulate", "x.json", "-q"}, 2,
+       {"sluice: scene error: x.json:", ": a NUL byte; a scene file is JSON text"}},
+      {"still -o a folder", {{"x.json", ok}, {"dir/keep", ""}}, {"still", "x.json", "--time", "0", "-o", "dir"}, 3,
+       {"sluice: output error: dir: is a directory; -o takes the PNG file to write"}},
   };
 }
 
@@ -330,6 +410,212 @@ TEST(SceneLimits, LongCurveAtASmallFluidSpacing) {
   const std::string e = parse_error(tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
                                          R"([{"shape": "polyline", "points": [[0, -1], [5e6, -1]], "spacing": 1000}])"));
   EXPECT_NE(e.find("x.json: /boundaries/0: the curve would be cut into about 100000000 pieces"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace sluice
+
+namespace sluice {
+namespace {
+
+// --- issue 19: cases that need more than one line of the table ------------------------------
+
+// 9: an object that its script moves into the fluid at t = 0 clears the fluid there (the
+// rest pose is far away); the run would otherwise stop later as a leak.
+TEST(Reliability, FluidRemovalUsesThePoseAtTimeZero) {
+  const std::string boundaries = R"([{"shape": "box", "min": [0, 0], "max": [0.5, 0.5]},
+    {"shape": "circle", "center": [5, 5], "radius": 0.1,
+     "motion": {"type": "keyframes", "keys": [{"time": 0, "offset": [-4.85, -4.85]}, {"time": 1, "offset": [-4.85, -4.85]}]}}])";
+  const Scene scene =
+      parse_scene(tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])", boundaries), "x.json");
+  EXPECT_GT(scene.fluid_removed, 0);
+  for (const Vec2& p : scene.fluid_x) EXPECT_GT((p - Vec2(0.15, 0.15)).norm(), 0.1) << p.transpose();
+  EXPECT_EQ(count_fluid_in_solids(scene, scene.fluid_x, 0.0), 0);
+}
+
+// 15: a scene too large for the memory the process may use is refused before anything is
+// allocated, with both figures (here under RLIMIT_AS, as `ulimit -v` sets it).
+TEST(Reliability, MemoryEstimateRefusesBeforeAllocating) {
+  CaseDir dir;
+  write_text(dir.work() / "x.json", tiny());
+  test::Limits limits;
+  limits.address_space = 256ull << 20;
+  const Result r = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--set", "spacing=0.0005"}, "", limits);
+  expect_one_clear_line(r, 2, {"sluice: scene error: x.json: /spacing: 360000 fluid particles and ",
+                               " of memory; the limit is 256 MiB (RLIMIT_AS (ulimit -v)); increase /spacing"});
+  EXPECT_FALSE(fs::exists(dir.work() / "out/stats.csv"));
+}
+
+// 1, 10, 13: a disk that fills up during the run (RLIMIT_FSIZE: a write past the limit
+// fails with EFBIG). The run's record stays: stats.csv with the rows it has and a
+// summary.json saying "failed"; no temporary file; exit 3 with the path and errno.
+void expect_failed_run_kept(const CaseDir& dir, const Result& r, const std::string& failed_file) {
+  expect_one_clear_line(r, 3, {"sluice: output error: " + failed_file, "File too large"});
+  expect_no_partial_files(dir.work());
+  ASSERT_TRUE(fs::exists(dir.work() / "out/stats.csv"));
+  const auto summary = nlohmann::json::parse(read_text(dir.work() / "out/summary.json"));
+  EXPECT_EQ(summary["status"], "failed");
+  EXPECT_NE(summary["message"].get<std::string>().find("File too large"), std::string::npos) << summary["message"];
+}
+
+// Why this machine cannot render (exit status 6 of a plain still of x.json), or "": the
+// tests that render ask first, so that a 6 from the case itself is a failure, not a skip.
+std::string no_egl(const CaseDir& dir) {
+  const Result r = run_sluice(dir, {"still", "x.json", "--time", "0", "--resolution", "16x16", "-o", "egl_probe.png"});
+  fs::remove(dir.work() / "egl_probe.png");
+  return r.status == 6 ? r.err : "";
+}
+
+long count_pngs(const fs::path& folder) {
+  long n = 0;
+  for (const auto& e : fs::directory_iterator(folder)) n += e.path().extension() == ".png";
+  return n;
+}
+
+TEST(Reliability, SimulateOnAFullDiskKeepsTheRecord) {
+  CaseDir dir;
+  write_text(dir.work() / "x.json", tiny());
+  test::Limits limits;
+  limits.file_size = 16384;  // stats.csv reaches it after ~60 of its 200 rows
+  const Result r = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--set", "time.duration=1"}, "", limits);
+  expect_failed_run_kept(dir, r, "out/stats.csv");
+}
+
+TEST(RenderReliability, RenderOnAFullDiskKeepsTheRecord) {
+  CaseDir dir;
+  write_text(dir.work() / "x.json", tiny());
+  test::Limits limits;
+  limits.file_size = 16384;
+  if (const std::string why = no_egl(dir); !why.empty()) GTEST_SKIP() << "no headless EGL here: " << why;
+  const Result r = run_sluice(dir, {"render", "x.json", "-q", "-o", "out", "--no-video", "--resolution", "64x64", "--set",
+                                    "time.duration=1"}, "", limits);
+  expect_failed_run_kept(dir, r, "out/stats.csv");
+  const auto summary = nlohmann::json::parse(read_text(dir.work() / "out/summary.json"));
+  EXPECT_EQ(summary["frames_written"], count_pngs(dir.work() / "out/frames"));
+}
+
+// A frame that cannot be written: exit 3 naming it (not 6, "no EGL"), no frame_*.png.tmp,
+// and frames_written counts the PNGs there are.
+TEST(RenderReliability, FrameThatCannotBeWrittenExits3) {
+  CaseDir dir;
+  write_text(dir.work() / "x.json", tiny());
+  test::Limits limits;
+  limits.file_size = 8192;  // under one 1280x720 frame, over the short run's stats.csv and summary
+  if (const std::string why = no_egl(dir); !why.empty()) GTEST_SKIP() << "no headless EGL here: " << why;
+  const Result r = run_sluice(dir, {"render", "x.json", "-q", "-o", "out", "--no-video"}, "", limits);
+  expect_one_clear_line(r, 3, {"sluice: output error: out/frames/frame_00000.png: write failed: File too large"});
+  expect_no_partial_files(dir.work());
+  const auto summary = nlohmann::json::parse(read_text(dir.work() / "out/summary.json"));
+  EXPECT_EQ(summary["status"], "failed");
+  EXPECT_EQ(summary["frames_written"], count_pngs(dir.work() / "out/frames"));
+}
+
+TEST(RenderReliability, StillMontageAndDiffOnAFullDiskExit3) {
+  CaseDir dir;
+  write_text(dir.work() / "x.json", tiny());
+  // Noise: the diff image does not compress below the limit.
+  render::Image a(256, 256), b(256, 256);
+  unsigned seed = 1;
+  for (auto& c : a.rgb) c = static_cast<std::uint8_t>((seed = seed * 1103515245u + 12345u) >> 24);
+  render::write_png((dir.work() / "a.png").string(), a);
+  render::write_png((dir.work() / "b.png").string(), b);
+  test::Limits limits;
+  limits.file_size = 8192;  // under any PNG here, over what the program prints on stderr
+  const Result diff = run_sluice(dir, {"compare", "a.png", "b.png", "--diff", "d.png"}, "", limits);
+  expect_one_clear_line(diff, 3, {"sluice: output error: d.png: write failed: File too large"});
+  EXPECT_FALSE(fs::exists(dir.work() / "d.png.tmp"));
+  if (const std::string why = no_egl(dir); !why.empty()) GTEST_SKIP() << "no headless EGL here: " << why;
+  const Result still = run_sluice(dir, {"still", "x.json", "--time", "0", "-o", "s.png"}, "", limits);
+  expect_one_clear_line(still, 3, {"sluice: output error: s.png: write failed: File too large"});
+  // montage says what it runs first; the error is its last line
+  const Result montage = run_sluice(dir, {"montage", "x.json", "--times", "0,0.02", "-o", "m.png"}, "", limits);
+  EXPECT_EQ(montage.status, 3) << montage.err;
+  EXPECT_NE(montage.err.find("\nsluice: output error: m.png: write failed: File too large\n"), std::string::npos) << montage.err;
+  expect_no_partial_files(dir.work());
+}
+
+// --- interruption --------------------------------------------------------------------------
+
+// A render long enough to be interrupted: 5000 steps, 250 small frames.
+std::vector<std::string> long_render(const std::vector<std::string>& extra = {}) {
+  std::vector<std::string> args = {"render", "x.json", "-q", "-o", "out", "--resolution", "64x64", "--set",
+                                   "time.duration=5", "--set", "time.dt=0.001"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
+bool wait_for_file(const fs::path& p, double seconds) {
+  for (int i = 0; i < static_cast<int>(seconds * 100); ++i) {
+    if (fs::exists(p)) return true;
+    usleep(10000);
+  }
+  return fs::exists(p);
+}
+
+// SIGINT and SIGTERM stop a real render at the next step: exit 130 / 143, the record says
+// "interrupted" with the step and the time and how to resume, stats.csv, the frames and
+// the checkpoints stay, nothing partial; and --resume finishes the run.
+TEST(RenderReliability, SignalsStopARenderAndKeepItsRecord) {
+  for (const int signal : {SIGINT, SIGTERM}) {
+    SCOPED_TRACE(signal == SIGINT ? "SIGINT" : "SIGTERM");
+    CaseDir dir;
+    write_text(dir.work() / "x.json", tiny());
+    if (const std::string why = no_egl(dir); !why.empty()) GTEST_SKIP() << "no headless EGL here: " << why;
+    const pid_t pid = test::start_sluice(dir, long_render({"--no-video", "--checkpoint-every", "2"}));
+    if (!wait_for_file(dir.work() / "out/frames/frame_00003.png", 60)) {
+      kill(pid, SIGKILL);
+      FAIL() << "no frame 3 after 60 s: " << test::wait_sluice(dir, pid).err;
+    }
+    kill(pid, signal);
+    const Result r = test::wait_sluice(dir, pid);
+    expect_one_clear_line(r, 128 + signal, {std::string("sluice: interrupted by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
+                                                " at step ",
+                                            "are kept in out; resume with: sluice render --resume out"});
+    expect_no_partial_files(dir.work());
+    const auto summary = nlohmann::json::parse(read_text(dir.work() / "out/summary.json"));
+    EXPECT_EQ(summary["status"], "interrupted");
+    EXPECT_GT(summary["interrupted"]["step"].get<long>(), 0);
+    EXPECT_GT(summary["interrupted"]["time"].get<double>(), 0.0);
+    EXPECT_EQ(summary["interrupted"]["resume"], "sluice render --resume out");
+    EXPECT_EQ(summary["frames_written"], count_pngs(dir.work() / "out/frames"));
+    EXPECT_TRUE(fs::exists(dir.work() / "out/stats.csv"));
+    EXPECT_TRUE(fs::exists(dir.work() / "out/checkpoints/run.json"));
+    if (signal == SIGINT) {
+      const Result resumed = run_sluice(dir, {"render", "--resume", "out", "-q"});
+      EXPECT_EQ(resumed.status, 0) << resumed.err;
+      EXPECT_EQ(nlohmann::json::parse(read_text(dir.work() / "out/summary.json"))["status"], "completed");
+    }
+  }
+}
+
+// 11: SIGTERM while ffmpeg encodes stops ffmpeg too (no orphan), removes its partial file,
+// and the summary says "interrupted" with the command that makes the video.
+TEST(RenderReliability, SigtermWhileEncodingStopsFfmpeg) {
+  CaseDir dir;
+  write_text(dir.work() / "x.json", tiny());
+  // A stand-in ffmpeg that starts its output file and then takes its time.
+  const fs::path bin = dir.base() / "bin";
+  write_text(bin / "ffmpeg", "#!/bin/sh\necho $$ > ffmpeg.pid\nfor a; do last=$a; done\n: > \"$last\"\nexec /bin/sleep 60\n");
+  fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
+  if (const std::string why = no_egl(dir); !why.empty()) GTEST_SKIP() << "no headless EGL here: " << why;
+  const pid_t pid = test::start_sluice(dir, {"render", "x.json", "-q", "-o", "out", "--resolution", "64x64"}, bin.string());
+  if (!wait_for_file(dir.work() / "ffmpeg.pid", 60) || read_text(dir.work() / "ffmpeg.pid").empty()) {
+    kill(pid, SIGKILL);
+    FAIL() << "the stand-in ffmpeg did not start: " << test::wait_sluice(dir, pid).err;
+  }
+  usleep(200000);  // let it create its output file
+  const pid_t ffmpeg = std::stoi(read_text(dir.work() / "ffmpeg.pid"));
+  kill(pid, SIGTERM);
+  const Result r = test::wait_sluice(dir, pid);
+  const bool orphan = kill(ffmpeg, 0) == 0;
+  if (orphan) kill(ffmpeg, SIGKILL);
+  EXPECT_FALSE(orphan) << "ffmpeg still runs";
+  fs::remove(dir.work() / "ffmpeg.pid");
+  expect_one_clear_line(r, 143, {"sluice: interrupted by SIGTERM while ffmpeg encoded out/tiny.mp4", "make the video with: ffmpeg "});
+  EXPECT_FALSE(fs::exists(dir.work() / "out/tiny.mp4.tmp.mp4"));
+  EXPECT_FALSE(fs::exists(dir.work() / "out/tiny.mp4"));
+  expect_no_partial_files(dir.work());
+  EXPECT_EQ(nlohmann::json::parse(read_text(dir.work() / "out/summary.json"))["status"], "interrupted");
 }
 
 }  // namespace

@@ -4,10 +4,12 @@
 #include <fcntl.h>
 #include <spawn.h>
 #include <stdlib.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -62,10 +64,20 @@ struct Result {
   std::string out, err;
 };
 
-// Runs SLUICE_EXE with `args` in `dir.work()`, without a shell. OMP_NUM_THREADS=1: the
-// cases are tiny, and test processes must not compete for the shared cores. `path`
-// replaces PATH when not empty.
-inline Result run_sluice(const CaseDir& dir, const std::vector<std::string>& args, const std::string& path = "") {
+// Resource limits of the child: RLIMIT_FSIZE makes a write past `file_size` bytes fail
+// with EFBIG (SIGXFSZ ignored), which is how a full disk looks to the program without
+// mounting anything; RLIMIT_AS caps its memory.
+struct Limits {
+  rlim_t file_size = RLIM_INFINITY;
+  rlim_t address_space = RLIM_INFINITY;
+};
+
+// Starts SLUICE_EXE with `args` in `dir.work()`, without a shell; stdout and stderr go to
+// files beside it. OMP_NUM_THREADS=1: the cases are tiny, and test processes must not
+// compete for the shared cores. `path` replaces PATH when not empty. Returns the pid
+// (-1 when it cannot be started).
+inline pid_t start_sluice(const CaseDir& dir, const std::vector<std::string>& args, const std::string& path = "",
+                          const Limits& limits = {}) {
   std::vector<std::string> argv_s = {SLUICE_EXE};
   argv_s.insert(argv_s.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -85,26 +97,41 @@ inline Result run_sluice(const CaseDir& dir, const std::vector<std::string>& arg
   envp.push_back(nullptr);
 
   const std::string out = (dir.base() / "stdout").string(), err = (dir.base() / "stderr").string();
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addchdir_np(&actions, dir.work().c_str());
-  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
-  posix_spawn_file_actions_destroy(&actions);
+  const std::string work = dir.work().string();
+  const pid_t pid = fork();
+  if (pid != 0) return pid;
+  // The child: only async-signal-safe calls until exec.
+  const int fd1 = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const int fd2 = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd1 < 0 || fd2 < 0 || dup2(fd1, 1) < 0 || dup2(fd2, 2) < 0 || chdir(work.c_str()) != 0) _exit(127);
+  signal(SIGXFSZ, SIG_IGN);
+  const rlimit fsize{limits.file_size, limits.file_size}, as{limits.address_space, limits.address_space};
+  if (limits.file_size != RLIM_INFINITY) setrlimit(RLIMIT_FSIZE, &fsize);
+  if (limits.address_space != RLIM_INFINITY) setrlimit(RLIMIT_AS, &as);
+  execve(argv[0], argv.data(), envp.data());
+  _exit(127);
+}
+
+// Waits for the program started by start_sluice and collects what it printed.
+inline Result wait_sluice(const CaseDir& dir, pid_t pid) {
   Result r;
-  if (rc != 0) {
-    r.err = std::string("cannot start ") + SLUICE_EXE + ": " + std::strerror(rc);
+  if (pid < 0) {
+    r.err = std::string("cannot start ") + SLUICE_EXE + ": " + std::strerror(errno);
     return r;
   }
   int status = 0;
   while (waitpid(pid, &status, 0) < 0)
     if (errno != EINTR) break;
   r.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  r.out = read_text(out);
-  r.err = read_text(err);
+  r.out = read_text(dir.base() / "stdout");
+  r.err = read_text(dir.base() / "stderr");
   return r;
+}
+
+// Runs SLUICE_EXE with `args` in `dir.work()` to its end (start_sluice, wait_sluice).
+inline Result run_sluice(const CaseDir& dir, const std::vector<std::string>& args, const std::string& path = "",
+                         const Limits& limits = {}) {
+  return wait_sluice(dir, start_sluice(dir, args, path, limits));
 }
 
 }  // namespace sluice::test

@@ -305,7 +305,7 @@ TEST(SamplingErrors, PointSamples) {
           {"missing file", boundary(R"({"shape": "points", "file": "walls/none.csv"})"),
            {"/boundaries/0/file: cannot open \"" + (dir.path() / "walls" / "none.csv").string() + "\"",
             "relative file is looked up in the scene file's directory"}},
-          {"a folder, not a file", boundary(R"({"shape": "points", "file": "."})"), {"/boundaries/0/file: cannot open"}},
+          {"a folder, not a file", boundary(R"({"shape": "points", "file": "."})"), {"/boundaries/0/file: ", "is not a regular file"}},
           {"semicolon", points_file("semicolon.csv", "x,y\n0,0\n1;2\n"),
            {"/boundaries/0/file: " + csv("semicolon.csv") + ":3: expected two numbers x,y, got '1;2'"}},
           {"three numbers", points_file("three.csv", "0,0\n1,2,3\n"), {csv("three.csv") + ":2: expected two numbers x,y, got '1,2,3'"}},

@@ -9,6 +9,8 @@
 #include <string>
 
 #include "app/commands.h"
+#include "app/interrupt.h"
+#include "app/run.h"
 #include "io/checkpoint.h"
 #include "io/output.h"
 #include "render/image.h"
@@ -178,7 +180,7 @@ int main(int argc, char** argv) {
   compare->add_option("--tolerance", cmp.tolerance, "Channel difference a pixel may have (default 0)")
       ->check(CLI::Range(0, 255));
   compare->add_option("--max-fraction", cmp.max_fraction, "Share of pixels allowed beyond the tolerance (default 0)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(number_check(false, 0, false, 1));  // CLI::Range lets nan through
   compare->add_option("--diff", cmp.diff, "Write a diff image here when pixels differ");
 
   BenchRenderOptions brender;
@@ -277,6 +279,20 @@ int main(int argc, char** argv) {
     if (*validatecmd) return run_validate(val);
     if (*figcmd) return run_figures(fig);
     if (*expcmd) return run_experiment(exp);
+  } catch (const Interrupted& e) {
+    std::fprintf(stderr, "sluice: %s\n", e.what());
+    return 128 + e.signal();  // 130 for SIGINT, 143 for SIGTERM, as a shell reports them
+  } catch (const sluice::render::ImageReadError& e) {
+    // compare's inputs: a missing or broken image, never mistaken for a missing GPU (6)
+    std::fprintf(stderr, "sluice: input image error: %s\n", e.what());
+    return 8;
+  } catch (const OutOfMemory& e) {
+    std::fprintf(stderr, "sluice: out of memory %s\n", e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "sluice: out of memory (std::bad_alloc) while running the command; a smaller scene "
+                         "(larger spacing) or more memory is needed\n");
+    return 1;
   } catch (const sluice::SceneError& e) {
     std::fprintf(stderr, "sluice: scene error: %s\n", e.what());
     return 2;

@@ -27,6 +27,9 @@ using namespace sluice::view;
 
 namespace {
 
+// The largest montage side: as for any image (--resolution), and what a PNG viewer opens.
+constexpr int kMaxMontageSide = 16384;
+
 // Frame rates tried when the scene's own does not land on every requested time; 1/1000 s
 // covers times with up to three decimals, and a higher rate would force many short steps.
 constexpr int kMaxLandingFps = 1000;
@@ -54,7 +57,9 @@ std::vector<double> parse_times(const std::string& text) {
   for (const std::string& part : split(text, ',')) {
     char* end = nullptr;
     const double t = std::strtod(part.c_str(), &end);
-    if (part.empty() || *end != '\0' || !std::isfinite(t)) throw FlagError("--times", text, allowed);
+    // Decimal only: strtod would also read 0x1 (hexadecimal) and inf.
+    const bool decimal = part.find_first_not_of("0123456789.eE+-") == std::string::npos;
+    if (part.empty() || !decimal || *end != '\0' || !std::isfinite(t)) throw FlagError("--times", text, allowed);
     if (t < 0) throw FlagError("--times", text, "time " + part + " is negative; times must be >= 0");
     if (!times.empty() && !(t > times.back()))
       throw FlagError("--times", text,
@@ -190,8 +195,20 @@ int run_montage(const MontageOptions& o) {
 
   // Every variant's scene before any run: a bad value of the last one shows at once.
   const size_t count = vary.key.empty() ? 1 : vary.values.size();
+  const int columns = o.cols > 0 ? o.cols : vary.key.empty() ? std::min<int>(4, times.size()) : times.size();
+  // The montage's size before any run: a grid too large to write fails only at the end.
+  const MontageLayout layout = montage_layout(cell_w, cell_h, static_cast<int>(times.size() * count), columns,
+                                              vary.key.empty() ? 1 : 2, !o.title.empty(), MontageColorbar{});
+  if (layout.width > kMaxMontageSide || layout.height > kMaxMontageSide)
+    throw FlagError("--cell", o.cell,
+                    "the montage would be " + std::to_string(layout.width) + "x" + std::to_string(layout.height) +
+                        " pixels; the limit is " + std::to_string(kMaxMontageSide) +
+                        " on each side (use a smaller --cell, other --cols, or fewer --times)");
   std::vector<Scene> scenes;
-  for (size_t v = 0; v < count; ++v) scenes.push_back(load_variant(o, times, vary, v));
+  for (size_t v = 0; v < count; ++v) {
+    scenes.push_back(load_variant(o, times, vary, v));
+    check_memory(scenes.back());
+  }
 
   ImageOptions image;
   image.resolution = o.cell;
@@ -221,7 +238,6 @@ int run_montage(const MontageOptions& o) {
     }
   }
 
-  const int columns = o.cols > 0 ? o.cols : vary.key.empty() ? std::min<int>(4, times.size()) : times.size();
   const MontageColorbar bar{first.frame.colormap, first.lo, first.hi, first.frame.field_label};
   const Image montage = compose_montage(cells, columns, o.title, bar);
   write_png(out.string(), montage);

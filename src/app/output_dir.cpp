@@ -52,6 +52,22 @@ void remove_previous(const fs::path& entry) {
   if (fs::is_empty(entry, ec)) fs::remove(entry, ec);
 }
 
+// --overwrite must not delete the file the run reads: a scene saved as DIR/summary.json
+// or among DIR/frames/ would be gone before it was used.
+void refuse_removing_input(const fs::path& entry, const std::string& input) {
+  if (input.empty()) return;
+  std::error_code ec;
+  const fs::path in = fs::weakly_canonical(input, ec);
+  if (ec) return;
+  const fs::path e = fs::weakly_canonical(entry, ec);
+  if (ec) return;
+  const bool inside = fs::is_directory(fs::symlink_status(entry, ec)) && in.parent_path() == e &&
+                      is_frame_file(in.filename().string());
+  if (in == e || inside)
+    throw OutputError(entry.string() + ": --overwrite would delete the scene file " + input +
+                      " (it is a previous run's file there); move the scene out of the output directory or choose another -o");
+}
+
 void check_writable(const fs::path& dir) {
   // access() also answers EROFS for a read-only file system; root passes the permission
   // bits, so a later write can still fail (and is reported then).
@@ -66,7 +82,7 @@ std::vector<std::string> previous_run_files(const std::string& scene_name) {
           "particles",   "ffmpeg.log",    scene_name + ".mp4", scene_name + ".mp4.tmp.mp4", "checkpoints"};
 }
 
-void prepare_output_directory(const fs::path& dir, bool overwrite, const std::string& scene_name) {
+void prepare_output_directory(const fs::path& dir, bool overwrite, const std::string& scene_name, const std::string& input) {
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw OutputError(dir.string() + ": output directory exists and is not a directory");
@@ -84,6 +100,7 @@ void prepare_output_directory(const fs::path& dir, bool overwrite, const std::st
     throw OutputError(dir.string() + ": output directory holds a previous run (" + list +
                       "); pass --overwrite to replace it, or choose another directory with -o");
   }
+  for (const std::string& name : found) refuse_removing_input(dir / name, input);
   for (const std::string& name : found) remove_previous(dir / name);
 }
 

@@ -17,7 +17,9 @@ std::vector<std::string> previous_run_files(const std::string& scene_name);
 // Creates `dir` (and its parents) and checks that files can be made in it. When it
 // holds any of previous_run_files(): throws OutputError naming the directory, the
 // entries and --overwrite, or with `overwrite` removes those entries (only those: a
-// directory shared with other files keeps them). Throws OutputError.
-void prepare_output_directory(const std::filesystem::path& dir, bool overwrite, const std::string& scene_name);
+// directory shared with other files keeps them), unless one of them is `input` (the scene
+// file: refused). Throws OutputError.
+void prepare_output_directory(const std::filesystem::path& dir, bool overwrite, const std::string& scene_name,
+                              const std::string& input = "");
 
 }  // namespace sluice::app

@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "app/commands.h"
+#include "app/interrupt.h"
 #include "app/output_dir.h"
 #include "app/resume.h"
 #include "app/run.h"
@@ -38,7 +39,25 @@ std::string frame_file(Index frame) {
   return buf;
 }
 
+std::string number_text(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+std::string read_text_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// An -o that names a folder: the PNG would be written beside it as FOLDER.tmp and fail.
+void check_png_path(const fs::path& out) {
+  std::error_code ec;
+  if (fs::is_directory(out, ec)) throw OutputError(out.string() + ": is a directory; -o takes the PNG file to write");
+}
+
 // PNG encoding of frame k overlaps the simulation of frame k + 1 (one write in flight).
+// written() counts the PNGs completed, for summary.json (not a frame whose write failed).
 class FrameWriter {
  public:
   void write(std::string path, Image img) {
@@ -46,15 +65,43 @@ class FrameWriter {
     pending_ = std::async(std::launch::async, [path = std::move(path), img = std::move(img)] { write_png(path, img); });
   }
   void wait() {
-    if (pending_.valid()) pending_.get();
+    if (!pending_.valid()) return;
+    pending_.get();
+    ++written_;
   }
+  long written() const { return written_; }
   ~FrameWriter() {
     if (pending_.valid()) pending_.wait();
   }
 
  private:
   std::future<void> pending_;
+  long written_ = 0;
 };
+
+// The frame index of `scene`'s end, as Simulation::frame_count() counts it.
+Index last_frame_of(const Scene& scene) {
+  return static_cast<Index>(std::ceil(scene.time.duration * scene.time.fps - 1e-9));
+}
+
+// The video was stopped by a signal after the run completed: summary.json says so and how
+// to make the video from the frames that are all there.
+[[noreturn]] void video_interrupted(const fs::path& dir, const VideoJob& job, int signal) {
+  std::vector<std::string> args = ffmpeg_arguments(job);
+  args.back() = job.output;
+  const std::string message = "interrupted by " + signal_name(signal) + " while ffmpeg encoded " + job.output +
+                              "; the run is complete and its frames are kept in " + (dir / "frames").string() +
+                              "; make the video with: " + command_line(args);
+  const fs::path path = dir / "summary.json";
+  nlohmann::json summary = nlohmann::json::parse(read_text_file(path), nullptr, false);
+  if (summary.is_object()) {
+    summary["status"] = "interrupted";
+    summary["message"] = message;
+    summary["interrupted"] = {{"signal", signal_name(signal)}, {"while", "encoding the video"}, {"resume", nullptr}};
+    write_file_atomic(path.string(), summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  }
+  throw Interrupted(signal, message);
+}
 
 }  // namespace
 
@@ -71,6 +118,13 @@ int run_render(const RenderOptions& given) {
     double a = 0, b = 0;
     if (!parse_pair(o.frames, a, b) || a < 0 || b < a || a != std::floor(a) || b != std::floor(b))
       throw FlagError("--frames", o.frames, "expected A:B, whole frame numbers with 0 <= A <= B");
+    // Frames the run never reaches would render nothing and still report success.
+    const Index end_frame = last_frame_of(scene);
+    if (b > end_frame)
+      throw FlagError("--frames", o.frames,
+                      "the scene's last frame is " + std::to_string(end_frame) + " (time.duration " +
+                          number_text(scene.time.duration) + " s at " + number_text(scene.time.fps) +
+                          " frames/s); allowed: 0 <= A <= B <= " + std::to_string(end_frame));
     first = static_cast<Index>(a);
     last = static_cast<Index>(b);
     // Stop the run at frame B: no need to simulate what is not rendered.
@@ -86,7 +140,7 @@ int run_render(const RenderOptions& given) {
   const fs::path dir = o.output_dir.empty() ? fs::path(scene.output.directory) : fs::path(o.output_dir);
   const fs::path frames_dir = dir / "frames";
   // A resumed run continues the run in `dir`; a fresh one must not mix with an old one.
-  if (o.resume.empty()) prepare_output_directory(dir, o.overwrite, scene.name);
+  if (o.resume.empty()) prepare_output_directory(dir, o.overwrite, scene.name, scene.file);
   make_directory(frames_dir);
 
   FrameRenderer renderer(config.frame);  // before the run: EGL problems show at once
@@ -107,9 +161,14 @@ int run_render(const RenderOptions& given) {
     ms_render += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     ++rendered;
   };
-  run_scene(scene, dir, o.quiet, on_frame,
-            make_run_control(o.resume, o.checkpoint_every, run_record(o), dir, scene, o.quiet));
-  writer.wait();
+  catch_interrupts();
+  RunControl control = make_run_control(o.resume, o.checkpoint_every, run_record(o), dir, scene, o.quiet);
+  control.command = "render";
+  // A resumed run's PNGs before the checkpoint's frame were written by the earlier run.
+  const long earlier =
+      control.resume ? std::max<long>(0, std::min<long>(last, control.resume->checkpoint.state.frame - 1) - first + 1) : 0;
+  run_scene(scene, dir, o.quiet, on_frame, control,
+            FrameOutput{[&] { writer.wait(); }, [&] { return earlier + writer.written(); }});
   if (!o.quiet)
     std::fprintf(stderr, "sluice: %d frames in %s (render + read-back %.1f ms per frame; PNG encoding overlapped)\n",
                  rendered, frames_dir.c_str(), rendered ? ms_render / rendered : 0.0);
@@ -121,8 +180,11 @@ int run_render(const RenderOptions& given) {
   job.fps = scene.time.fps;
   job.output = (dir / (scene.name + ".mp4")).string();
   job.log = (dir / "ffmpeg.log").string();
+  job.cancelled = [] { return interrupt_signal() != 0; };
   try {
     encode_video(job);
+  } catch (const VideoInterrupted&) {
+    video_interrupted(dir, job, interrupt_signal());
   } catch (const VideoError& e) {
     // One line: the cause, then where the work done so far is.
     throw VideoError(std::string(e.what()) + "; the frames are kept in " + frames_dir.string());
@@ -135,10 +197,20 @@ int run_still(const StillOptions& o) {
   set_threads(o.threads);
   if (!(o.time >= 0)) throw FlagError("--time", std::to_string(o.time), "must be >= 0");
   std::vector<std::string> overrides = o.set;
+  // The time is checked against the scene as it is (as montage checks its times): a
+  // still after the scene's end is a mistake in --time, not in time.duration.
+  const double duration = load_scene(o.scene, overrides).time.duration;
+  if (o.time > duration)
+    throw FlagError("--time", number_text(o.time),
+                    "the time is after the scene's end; allowed: 0 to time.duration = " + number_text(duration) + " s");
+  if (o.time > 0 && o.time < kMinDuration)
+    throw FlagError("--time", number_text(o.time), "allowed: 0, or " + number_text(kMinDuration) + " s to time.duration");
   if (o.time > 0) overrides.push_back(number_override("time.duration", o.time));
   const Scene scene = load_scene(o.scene, overrides);
   const ImageConfig config = resolve_image(o.image, scene);
   const fs::path out = o.output.empty() ? fs::path(scene.output.directory) / "still.png" : fs::path(o.output);
+  check_png_path(out);
+  check_memory(scene);
   if (out.has_parent_path()) make_directory(out.parent_path());
   FrameRenderer renderer(config.frame);
   Simulation sim(scene);
@@ -157,6 +229,14 @@ int run_still(const StillOptions& o) {
 }
 
 int run_compare(const CompareOptions& o) {
+  // The diff image must not replace an input (compare --diff A.png A.png B.png).
+  if (!o.diff.empty()) {
+    std::error_code ec;
+    for (const std::string& in : {o.a, o.b})
+      if (fs::equivalent(o.diff, in, ec))
+        throw OutputError(o.diff + ": --diff names the input image " + in + "; choose another path for the diff image");
+    check_png_path(o.diff);
+  }
   const Image a = read_png(o.a), b = read_png(o.b);
   const CompareResult r = compare_images(a, b, o.tolerance, o.max_fraction);
   if (!r.same_size) {

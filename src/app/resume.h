@@ -46,6 +46,7 @@ class Checkpointer {
   Checkpointer(const Scene& scene, const std::filesystem::path& dir, const RunControl& control);
   void at_frame(const Simulation& sim, const StepStats& st, const RunTotals& totals, double wall_seconds);
   bool enabled() const { return every_ > 0; }
+  long written() const { return written_; }
   nlohmann::json summary() const;
 
  private:

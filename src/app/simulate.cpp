@@ -1,13 +1,16 @@
 // `sluice simulate`: run a scene, writing stats.csv, summary.json and particle exports.
 #include <omp.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
 
 #include "app/commands.h"
+#include "app/interrupt.h"
 #include "app/output_dir.h"
 #include "app/resume.h"
 #include "app/run.h"
@@ -31,6 +34,11 @@ std::string number_override(const std::string& path, double value) {
 
 namespace {
 
+// The command that continues an interrupted run, for summary.json.
+std::string resume_command(const std::string& command, const fs::path& dir) {
+  return "sluice " + command + " --resume " + dir.string();
+}
+
 std::string frame_name(Index frame, const char* ext) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "frame_%05d.%s", frame, ext);
@@ -44,7 +52,52 @@ std::string clock_string(double seconds) {
   return buf;
 }
 
+// A figure in MiB for messages.
+std::string mib(double bytes) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.0f MiB", bytes / (1024.0 * 1024.0));
+  return buf;
+}
+
+// Bytes a simulation holds per particle: its arrays and its neighbour lists (IISPH on
+// dam_break takes about 0.5 kB per fluid particle). Four times that, on purpose: the
+// estimate is there to refuse what cannot fit, not to predict.
+constexpr double kBytesPerFluidParticle = 2048;
+constexpr double kBytesPerBoundarySample = 1024;
+
+// The memory the process may use: physical memory, or less under a resource limit.
+double memory_limit(std::string& what) {
+  const double pages = static_cast<double>(sysconf(_SC_PHYS_PAGES)), page = static_cast<double>(sysconf(_SC_PAGESIZE));
+  double limit = pages > 0 && page > 0 ? pages * page : HUGE_VAL;
+  what = "physical memory";
+  for (const auto& [resource, name] : {std::pair{RLIMIT_AS, "RLIMIT_AS (ulimit -v)"}, std::pair{RLIMIT_DATA, "RLIMIT_DATA (ulimit -d)"}}) {
+    rlimit rl{};
+    if (getrlimit(resource, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && static_cast<double>(rl.rlim_cur) < limit) {
+      limit = static_cast<double>(rl.rlim_cur);
+      what = name;
+    }
+  }
+  return limit;
+}
+
 }  // namespace
+
+std::string allocating_message(const Scene& scene) {
+  return "while allocating the simulation of " + std::to_string(scene.fluid_x.size()) + " fluid particles and " +
+         std::to_string(scene.boundary_x.size()) + " boundary samples of " + scene.file +
+         "; increase /spacing or give the process more memory";
+}
+
+void check_memory(const Scene& scene) {
+  const double need = kBytesPerFluidParticle * static_cast<double>(scene.fluid_x.size()) +
+                      kBytesPerBoundarySample * static_cast<double>(scene.boundary_x.size());
+  std::string what;
+  const double limit = memory_limit(what);
+  if (need > limit)
+    throw SceneError(scene.file + ": /spacing: " + std::to_string(scene.fluid_x.size()) + " fluid particles and " +
+                     std::to_string(scene.boundary_x.size()) + " boundary samples need about " + mib(need) +
+                     " of memory; the limit is " + mib(limit) + " (" + what + "); increase /spacing");
+}
 
 void make_directory(const fs::path& dir) {
   std::error_code ec;
@@ -61,7 +114,7 @@ int run_simulate(const SimulateOptions& given) {
   const std::vector<std::string> exports = o.exports.empty() ? scene.output.export_formats : o.exports;
   const fs::path dir = o.output_dir.empty() ? fs::path(scene.output.directory) : fs::path(o.output_dir);
   // A resumed run continues the run in `dir`; a fresh one must not mix with an old one.
-  if (o.resume.empty()) prepare_output_directory(dir, o.overwrite, scene.name);
+  if (o.resume.empty()) prepare_output_directory(dir, o.overwrite, scene.name, scene.file);
   const bool want_csv = std::find(exports.begin(), exports.end(), "csv") != exports.end();
   const bool want_vtk = std::find(exports.begin(), exports.end(), "vtk") != exports.end();
   if (want_csv || want_vtk) make_directory(dir / "particles");
@@ -72,13 +125,15 @@ int run_simulate(const SimulateOptions& given) {
     if (want_vtk)
       write_file_atomic((particles / frame_name(frame, "vtk")).string(), particles_vtk(sim.fluid(), sim.time()));
   };
-  run_scene(scene, dir, o.quiet, export_frame,
-            make_run_control(o.resume, o.checkpoint_every, run_record(o), dir, scene, o.quiet));
+  catch_interrupts();
+  RunControl control = make_run_control(o.resume, o.checkpoint_every, run_record(o), dir, scene, o.quiet);
+  control.command = "simulate";
+  run_scene(scene, dir, o.quiet, export_frame, control);
   return 0;
 }
 
 void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameCallback& on_frame,
-               const RunControl& control) {
+               const RunControl& control, const FrameOutput& output) {
   make_directory(dir);
   const bool tty = isatty(fileno(stderr)) && !quiet;
   if (!quiet)
@@ -93,9 +148,12 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
 
   // The settling phase runs in the constructor: if it goes unstable, the run's record
   // says so before the error reaches main (exit status 4).
+  check_memory(scene);
   std::optional<Simulation> built;
   try {
     built.emplace(scene);
+  } catch (const std::bad_alloc&) {
+    throw OutOfMemory(allocating_message(scene));
   } catch (const SimulationUnstable& e) {
     const nlohmann::json summary = {{"sluice_version", SLUICE_VERSION},
                                     {"scene", {{"file", scene.file}, {"name", scene.name}}},
@@ -133,29 +191,68 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
   auto elapsed = [&] {
     return wall_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
+  // Frames whose callback returned (all of them written, for a sink without FrameOutput),
+  // after those of the run a checkpoint continues (its own frame is drawn again).
+  long frames_done = control.resume ? control.resume->checkpoint.state.frame : 0;
+  auto frames_written = [&] { return output.written ? output.written() : frames_done; };
   // stats.csv under its real name first, then summary.json: a stats.csv without a
-  // summary.json is a run that was killed.
-  auto finish_files = [&](const std::string& status, const std::string& message) {
+  // summary.json is a run that was killed. A stats.csv that could not be completed (full
+  // disk) is kept with the rows it has, and the summary says the run failed.
+  auto finish_files = [&](std::string status, std::string message) {
     totals.wall_seconds = elapsed();
-    csv.finish();
+    std::exception_ptr csv_error;
+    try {
+      csv.finish();
+    } catch (const OutputError& e) {
+      csv_error = std::current_exception();
+      if (status == "completed") {
+        status = "failed";
+        message = e.what();
+      }
+    }
     summary["status"] = status;
     if (!message.empty()) summary["message"] = message;
-    summary["frames_written"] = sim.frame() + 1;
+    summary["frames_written"] = frames_written();
     summary["totals"] = totals.to_json(static_cast<long>(scene.fluid_x.size()));
     if (checkpointer.enabled()) summary["checkpoints"] = checkpointer.summary();
     // replace: a name or --set value that is not UTF-8 must not stop the summary
     write_file_atomic((dir / "summary.json").string(),
                       summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    if (csv_error) std::rethrow_exception(csv_error);
+  };
+  // Stops the run at a step after SIGINT or SIGTERM: frames in flight are finished, the
+  // record says where the run stopped and how to go on.
+  auto stop_if_interrupted = [&] {
+    const int signal = interrupt_signal();
+    if (signal == 0) return;
+    if (tty) std::fprintf(stderr, "\n");
+    if (output.wait) output.wait();
+    const bool resumable = checkpointer.written() > 0 || control.resume;
+    const std::string how = resumable ? "resume with: sluice " + control.command + " --resume " + dir.string()
+                                      : "no checkpoint was written (pass --checkpoint-every N to be able to resume); "
+                                        "run again with --overwrite";
+    char where[96];
+    std::snprintf(where, sizeof where, "at step %ld, t = %.9g s", sim.steps(), sim.time());
+    const std::string message = "interrupted by " + signal_name(signal) + " " + where + "; stats.csv, summary.json" +
+                                (resumable ? ", the checkpoints" : "") + " and the output up to frame " +
+                                std::to_string(sim.frame()) + " are kept in " + dir.string() + "; " + how;
+    summary["interrupted"] = {{"signal", signal_name(signal)}, {"step", sim.steps()}, {"time", sim.time()},
+                              {"resume", resumable ? nlohmann::json(resume_command(control.command, dir)) : nlohmann::json(nullptr)}};
+    finish_files("interrupted", message);
+    throw Interrupted(signal, message);
   };
 
   try {
     on_frame(sim, sim.frame(), resumed);
+    ++frames_done;
     while (!sim.finished()) {
+      stop_if_interrupted();
       const StepStats st = sim.step();
       csv.write(st);
       totals.add(st);
       if (st.frame < 0) continue;
       on_frame(sim, st.frame, &st);
+      ++frames_done;
       csv.flush();
       checkpointer.at_frame(sim, st, totals, elapsed());
       const double wall = elapsed();
@@ -170,8 +267,16 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
                      totals.sum_iterations / static_cast<double>(totals.steps), wall, clock_string(eta).c_str());
       }
     }
+    if (output.wait) output.wait();  // the last frame's write must succeed before "completed"
+  } catch (const Interrupted&) {
+    throw;
   } catch (const SimulationUnstable& e) {
     if (tty) std::fprintf(stderr, "\n");
+    try {
+      if (output.wait) output.wait();
+    } catch (const std::exception&) {
+      // the instability is the error to report; the count says what was written
+    }
     finish_files("unstable", e.what());
     // One message: what happened and what is kept.
     throw SimulationUnstable(std::string(e.what()) + "; stats.csv, summary.json and the output up to frame " +
@@ -180,6 +285,10 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     // A failure that is not the simulation's (a frame that cannot be rendered or
     // written): the files of the run end with it, marked "failed".
     if (tty) std::fprintf(stderr, "\n");
+    try {
+      if (output.wait) output.wait();  // the write in flight: completed or failed, it counts right
+    } catch (const std::exception&) {
+    }
     try {
       finish_files("failed", e.what());
     } catch (const std::exception&) {

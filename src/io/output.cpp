@@ -1,6 +1,8 @@
 #include "io/output.h"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 
@@ -14,7 +16,7 @@ const char* StatsCsv::header() {
 
 StatsCsv::StatsCsv(const std::string& path, bool append)
     : path_(path), tmp_(path + ".tmp"), out_(tmp_, append ? std::ios::app : std::ios::trunc) {
-  if (!out_) throw OutputError(tmp_ + ": cannot open for writing");
+  if (!out_) throw OutputError(tmp_ + ": cannot open for writing: " + std::strerror(errno));
   if (!append) out_ << header() << '\n';
 }
 
@@ -27,11 +29,21 @@ StatsCsv::~StatsCsv() {
 
 void StatsCsv::finish() {
   out_.close();
-  if (!out_) throw OutputError(tmp_ + ": write failed (disk full?)");
+  if (!out_ && error_ == 0) error_ = errno ? errno : EIO;
   std::error_code ec;
   std::filesystem::rename(tmp_, path_, ec);
   if (ec) throw OutputError(path_ + ": cannot rename from " + tmp_ + ": " + ec.message());
   finished_ = true;
+  if (error_ != 0)
+    throw OutputError(path_ + ": write failed: " + std::strerror(error_) + " (the rows before the failure are kept)");
+}
+
+void StatsCsv::flush() {
+  out_.flush();
+  if (!out_ && error_ == 0) {
+    error_ = errno ? errno : EIO;
+    throw OutputError(tmp_ + ": write failed: " + std::strerror(error_));
+  }
 }
 
 void StatsCsv::write(const StepStats& s) {
@@ -42,25 +54,16 @@ void StatsCsv::write(const StepStats& s) {
                 s.max_cfl, s.fluid_particles, s.frame, s.ms_neighbors, s.ms_nonpressure, s.ms_pressure,
                 s.ms_integrate, s.ms_total, s.ms_boundary, s.kinetic_energy, s.potential_energy, s.mechanical_energy,
                 s.boundary_work);
+  errno = 0;
   out_ << line;
-  if (!out_) throw OutputError(tmp_ + ": write failed (disk full?)");
+  if (!out_) {
+    if (error_ == 0) error_ = errno ? errno : EIO;
+    throw OutputError(tmp_ + ": write failed: " + std::strerror(error_));
+  }
 }
 
 void write_file_atomic(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  std::error_code ec;
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw OutputError(path + ": cannot open for writing");
-    out << text;
-    out.close();
-    if (!out) {
-      std::filesystem::remove(tmp, ec);  // a partial file must not stay behind
-      throw OutputError(path + ": write failed (disk full?)");
-    }
-  }
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw OutputError(path + ": cannot rename from " + tmp + ": " + ec.message());
+  write_bytes_atomic(path, text.data(), text.size());
 }
 
 namespace {

@@ -6,16 +6,12 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "io/atomic_file.h"
 #include "sim/particles.h"
 #include "sim/stats.h"
 
 namespace sluice {
 
-// Thrown when an output file cannot be written; the message names the path.
-class OutputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 // stats.csv: one row per step; columns documented in docs/cli.md ("Outputs"). The rows go to
 // `path.tmp`, renamed to `path` by finish() when the run has ended (completed, unstable
@@ -30,8 +26,10 @@ class StatsCsv {
   StatsCsv(const StatsCsv&) = delete;
   StatsCsv& operator=(const StatsCsv&) = delete;
   void write(const StepStats& s);
-  void flush() { out_.flush(); }
-  // Closes the file and renames it to its real name; throws OutputError.
+  void flush();  // throws OutputError after a failed write
+  // Closes the file and renames it to its real name, also after a failed write (the rows
+  // before it are kept: a full disk must not lose the run's record); then throws
+  // OutputError if a write had failed.
   void finish();
   static const char* header();
 
@@ -39,9 +37,10 @@ class StatsCsv {
   std::string path_, tmp_;
   std::ofstream out_;
   bool finished_ = false;
+  int error_ = 0;  // errno of the first failed write
 };
 
-// Writes `text` to `path` through `path.tmp` and a rename.
+// Writes `text` to `path` through `path.tmp` and a rename (write_bytes_atomic).
 void write_file_atomic(const std::string& path, const std::string& text);
 
 // One row per fluid particle in the scene's initial order: id,x,y,vx,vy,pressure,density.

@@ -3,9 +3,13 @@
 // level 1 with the "up" filter ~85 ms (measured, see shared NOTES).
 #include "render/image.h"
 
+#include "io/atomic_file.h"
+
 #include <libdeflate.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -54,21 +58,18 @@ std::vector<std::uint8_t> encode_png(const Image& img) {
 
 void write_png(const std::string& path, const Image& img) {
   const std::vector<std::uint8_t> png = encode_png(img);
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    f.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
-    if (!f) throw RenderError(tmp + ": cannot write PNG file");
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw RenderError(path + ": cannot rename " + tmp + ": " + ec.message());
+  write_bytes_atomic(path, png.data(), png.size());
 }
 
 Image read_png(const std::string& path) {
+  // stb says only "can't fopen": the errno says why (missing, a folder, no permission).
+  errno = 0;
+  FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw ImageReadError(path + ": cannot open PNG: " + std::strerror(errno));
   int w = 0, h = 0, channels = 0;
-  unsigned char* data = stbi_load(path.c_str(), &w, &h, &channels, 3);
-  if (!data) throw RenderError(path + ": cannot read PNG: " + stbi_failure_reason());
+  unsigned char* data = stbi_load_from_file(f, &w, &h, &channels, 3);
+  std::fclose(f);
+  if (!data) throw ImageReadError(path + ": cannot read PNG: " + stbi_failure_reason());
   Image img(w, h);
   std::copy(data, data + img.rgb.size(), img.rgb.begin());
   stbi_image_free(data);

@@ -14,6 +14,13 @@ class RenderError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// An input image that cannot be opened or decoded (`sluice compare`'s own exit status:
+// a missing golden image is not a missing GPU).
+class ImageReadError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // Rows top to bottom, 3 bytes per pixel, no padding.
 struct Image {
   int width = 0, height = 0;
@@ -27,9 +34,10 @@ struct Image {
 
 // PNG bytes of `img` (deflate level 1, "up" filter: fast and still compact).
 std::vector<std::uint8_t> encode_png(const Image& img);
-// Writes the PNG to `path` through `path.tmp` and a rename, so an existing file is complete.
+// Writes the PNG to `path` through `path.tmp` and a rename, so an existing file is
+// complete; throws OutputError (io/atomic_file.h) naming the path and errno.
 void write_png(const std::string& path, const Image& img);
-// Reads a PNG (any channel count) as RGB; throws RenderError naming the file.
+// Reads a PNG (any channel count) as RGB; throws ImageReadError naming the file.
 Image read_png(const std::string& path);
 
 struct CompareResult {

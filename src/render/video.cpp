@@ -3,6 +3,9 @@
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
 
 #include <cerrno>
 #include <cstdio>
@@ -63,8 +66,24 @@ void encode_video(const VideoJob& job) {
                      "; install it, e.g. apt-get install ffmpeg): " + cmd);
   }
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) throw VideoError("waiting for ffmpeg failed: " + std::string(std::strerror(errno)));
+  const std::string partial = job.output + ".tmp.mp4";
+  // Polled, not a blocking wait: a signal to sluice must stop ffmpeg too, not orphan it.
+  bool stopped = false;
+  while (true) {
+    const pid_t r = waitpid(pid, &status, WNOHANG);
+    if (r == pid) break;
+    if (r < 0 && errno != EINTR) throw VideoError("waiting for ffmpeg failed: " + std::string(std::strerror(errno)));
+    if (!stopped && job.cancelled && job.cancelled()) {
+      kill(pid, SIGTERM);
+      stopped = true;
+    }
+    usleep(20000);
+  }
+  if (stopped || (job.cancelled && job.cancelled())) {
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);
+    throw VideoInterrupted("ffmpeg stopped before the video was complete; no video written");
+  }
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     const std::string how = WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status))
                                               : "killed by signal " + std::to_string(WTERMSIG(status));

@@ -30,6 +30,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMaxParticles = 2e7;  // guard against a typo in the spacing eating all memory
 // Frames of a run (duration x fps): frame numbers are 32-bit, and every frame is a file.
 constexpr double kMaxFrames = 1e7;
+// Steps of a run: the fewest it can take (duration / dt, or / dt_max when adaptive). A
+// typo in dt would otherwise run for days and fill the disk with stats.csv rows.
+constexpr double kMaxSteps = 1e7;
 // Nesting of JSON arrays and objects: a scene needs 7 levels; a hostile file of a
 // million '[' would overflow the stack where values are copied or printed.
 constexpr std::size_t kMaxDepth = 100;
@@ -239,6 +242,13 @@ class Reader {
 
 // --- parsing the text -----------------------------------------------------------------------
 
+// "line:column" (1-based) of byte `pos` of `text`.
+std::string line_column(const std::string& text, std::size_t pos) {
+  const std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
+  const std::size_t nl = pos == 0 ? std::string::npos : text.rfind('\n', pos - 1);
+  return std::to_string(line) + ":" + std::to_string(nl == std::string::npos ? pos + 1 : pos - nl);
+}
+
 json parse_json(const std::string& text, const Context& ctx) {
   // nlohmann keeps the last of duplicate keys; the callback turns that into an error.
   struct Frame {
@@ -278,6 +288,9 @@ json parse_json(const std::string& text, const Context& ctx) {
     }
     return true;
   };
+  // A NUL ends what some readers see of the file; nothing may hide after one.
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos)
+    throw SceneError(ctx.file + ":" + line_column(text, nul) + ": a NUL byte; a scene file is JSON text");
   json j;
   try {
     j = json::parse(text, callback);
@@ -303,6 +316,14 @@ json parse_json(const std::string& text, const Context& ctx) {
     p = p == std::string::npos ? detail.find("] ") : detail.find(": ", p);
     if (p != std::string::npos) detail = detail.substr(p + 2);
     throw SceneError(ctx.file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": JSON parse error: " + detail);
+  } catch (const json::out_of_range& e) {
+    // "number overflow parsing '1e999'" carries no position: find the number in the text.
+    const std::string what = e.what();
+    const std::size_t q1 = what.find('\''), q2 = what.rfind('\'');
+    const std::size_t at = q1 != std::string::npos && q2 > q1 ? text.find(what.substr(q1 + 1, q2 - q1 - 1)) : std::string::npos;
+    const std::string detail = what.substr(what.find("] ") == std::string::npos ? 0 : what.find("] ") + 2);
+    throw SceneError(ctx.file + (at == std::string::npos ? "" : ":" + line_column(text, at)) + ": JSON parse error: " +
+                     detail + " (numbers must be within the range of double, about 1.8e308)");
   } catch (const json::exception& e) {
     throw SceneError(ctx.file + ": JSON parse error: " + e.what());
   }
@@ -396,6 +417,23 @@ SolverSettings read_solver(Reader& r, const Context& ctx) {
   return s;
 }
 
+// The run must end within kMaxSteps steps, and its smallest step must move the clock:
+// t + dt == t in double precision would repeat the same time forever.
+void check_step_count(Reader& r, const Context& ctx, const TimeSettings& t, bool fixed) {
+  const double step = fixed ? t.dt : t.dt_max;
+  const std::string key = fixed ? "dt" : "dt_max";
+  const double steps = (t.settle + t.duration) / step;
+  if (!(steps <= kMaxSteps))
+    ctx.fail(r.at(key), key + " " + num(step) + " s for " + num(t.settle + t.duration) + " s (settle + duration) makes at least " +
+                            num(std::ceil(steps)) + " steps; the limit is " + num(kMaxSteps) + " (raise " + key +
+                            " or shorten the run)");
+  const double smallest = fixed ? t.dt : t.dt_min;
+  const double end = t.settle + t.duration;
+  if (!(end + smallest > end))
+    ctx.fail(r.at(fixed ? "dt" : "dt_min"), "value " + num(smallest) + " s does not advance the time at t = " + num(end) +
+                                              " s in double precision; must be > " + num(end * 0x1p-52) + " [s]");
+}
+
 TimeSettings read_time(Reader& r, const Context& ctx) {
   TimeSettings t;
   t.duration = r.number("duration", t.duration, Range::positive("[s]"));
@@ -417,6 +455,10 @@ TimeSettings read_time(Reader& r, const Context& ctx) {
   t.settle = r.number("settle", t.settle, Range::at_least(0, "[s]"));
   if (t.dt_min > t.dt_max)
     ctx.fail(r.at("dt_min"), "dt_min " + num(t.dt_min) + " is larger than dt_max " + num(t.dt_max) + "; need 0 < dt_min <= dt_max");
+  if (t.duration < kMinDuration)
+    ctx.fail(r.at("duration"), "value " + num(t.duration) + " is out of range; must be >= " + num(kMinDuration) +
+                                   " [s] (shorter runs are below the resolution of the time steps)");
+  check_step_count(r, ctx, t, fixed);
   r.finish();
   return t;
 }
@@ -462,8 +504,10 @@ RenderSettings read_render(Reader& r, const Context& ctx) {
   const json* range = r.find("range");
   if (range && !range->is_null()) {
     const Vec2 lohi = ctx.vec2(*range, r.at("range"));
-    if (!(lohi.y() > lohi.x()))
-      ctx.fail(r.at("range"), "range " + show(*range) + " must be [lo, hi] with lo < hi (in the units of color_by), or null for automatic");
+    // hi - lo must be finite too: the colour of a value is (v - lo) / (hi - lo).
+    if (!(lohi.y() > lohi.x()) || !std::isfinite(lohi.y() - lohi.x()))
+      ctx.fail(r.at("range"), "range " + show(*range) +
+                                  " must be [lo, hi] with lo < hi and hi - lo finite (in the units of color_by), or null for automatic");
     s.fixed_range = true;
     s.range_lo = lohi.x();
     s.range_hi = lohi.y();
@@ -505,7 +549,14 @@ shapes::FluidShape read_fluid_block(Reader& r, const Context& ctx) {
   } else {
     f.kind = shapes::FluidShape::Kind::Polygon;
     f.points = r.points("points", 3);
-    if (const int seg = shapes::self_intersection(f.points, true); seg >= 0)
+    // Points on one line hold no fluid (the no-fluid error follows); such edges fold back
+    // over each other, which is not what the self-intersection message is about.
+    const bool on_a_line = std::all_of(f.points.begin(), f.points.end(), [&](const Vec2& p) {
+      const Vec2 a = f.points[1] - f.points[0], b = p - f.points[0];
+      return a.x() * b.y() - a.y() * b.x() == 0;
+    });
+    if (on_a_line) {
+    } else if (const int seg = shapes::self_intersection(f.points, true); seg >= 0)
       ctx.fail(r.at("points"), "the polygon intersects itself (edge " + std::to_string(seg) +
                                    " crosses another edge); the points must form a simple polygon");
   }
@@ -610,9 +661,14 @@ bool is_header(const std::vector<std::string>& fields) {
 // starting with '#' and a header "x,y" before the first sample are skipped.
 std::vector<Vec2> read_sample_file(const std::filesystem::path& path, const std::string& json_path, const Context& ctx) {
   std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  // A device or folder opens but is not a points file: say what it is, not "cannot open".
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    ctx.fail(json_path, "\"" + path.string() + "\" is not a regular file; expected a text file of points x,y");
   std::ifstream in(path, std::ios::binary);
-  if (!in || !std::filesystem::is_regular_file(path, ec))
-    ctx.fail(json_path, "cannot open \"" + path.string() + "\" (a relative file is looked up in the scene file's directory)");
+  if (!in)
+    ctx.fail(json_path, "cannot open \"" + path.string() + "\": " + std::strerror(errno) +
+                            " (a relative file is looked up in the scene file's directory)");
   std::vector<Vec2> out;
   bool first = true;
   std::string line;
@@ -860,7 +916,8 @@ shapes::BoundaryShape read_boundary(Reader& r, const Context& ctx, std::size_t i
         ctx.fail(r.at("points") + "/" + std::to_string((i + 1) % b.points.size()),
                  "repeats the previous point; segments must have a length > 0");
     if (const int seg = shapes::self_intersection(b.points, b.closed); seg >= 0)
-      ctx.fail(r.at("points"), "segment " + std::to_string(seg) + " crosses another segment; the " + shape + " must not intersect itself");
+      ctx.fail(r.at("points"), "segment " + std::to_string(seg) + " crosses or runs along another segment; the " + shape +
+                                   " must not intersect or overlap itself");
     if (polygon && shapes::signed_area(b.points) == 0) ctx.fail(r.at("points"), "the polygon has zero area");
     b.segment_spacing = read_segment_spacing(r, ctx, segs, h, true, "");
     if (polygon) {
@@ -908,11 +965,70 @@ void check_boundary_cost(const Context& ctx, const std::string& path, const Boun
                        " of each (check spacing and layers)");
 }
 
+// The name becomes a folder (renders/<name>) and a file (<name>.mp4): it must stay one
+// path component, so that a scene cannot write outside its output directory.
+void check_name(const Context& ctx, const std::string& name) {
+  const bool control = std::any_of(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; });
+  if (name == "." || name == ".." || name.find_first_of("/\\") != std::string::npos || control)
+    ctx.fail("/name", "invalid value " + show(json(name)) +
+                          "; a name must not contain '/', '\\' or control characters, nor be '.' or '..' (it names the "
+                          "output folder renders/<name> and the video <name>.mp4)");
+}
+
+// Clears the fluid inside the boundaries as they stand at t = 0: objects at rest (and
+// moving ones whose script leaves them at rest at t = 0) together, every other moving
+// object on its own, with the fluid taken into its rest frame and back.
+Index remove_fluid_at_start(Scene& scene, const std::vector<shapes::BoundaryShape>& walls, double h) {
+  std::vector<shapes::BoundaryShape> at_rest;
+  std::vector<Vec2> rest_samples;
+  std::vector<std::size_t> posed;
+  for (std::size_t i = 0; i < walls.size(); ++i) {
+    const BoundaryObject& obj = scene.objects[i];
+    const Pose pose = obj.moving ? obj.motion.at(0.0) : Pose{};
+    if (pose.angle != 0 || pose.shift != Vec2::Zero()) {
+      posed.push_back(i);
+      continue;
+    }
+    at_rest.push_back(walls[i]);
+    rest_samples.insert(rest_samples.end(), scene.boundary_x.begin() + obj.first,
+                        scene.boundary_x.begin() + obj.first + obj.count);
+  }
+  Index near = 0;
+  Index removed = shapes::remove_covered_fluid(scene.fluid_x, scene.fluid_v, at_rest, rest_samples, h, &near);
+  scene.fluid_near_samples = near;
+  for (std::size_t i : posed) {
+    const BoundaryObject& obj = scene.objects[i];
+    const Pose pose = obj.motion.at(0.0);
+    const PoseMap back(Pose{-pose.angle, 0, 0, Vec2::Zero(), Vec2::Zero(), Vec2::Zero()});
+    // The kept particles are picked by index (carried as the "velocity" of the rest-frame
+    // copy), so that their positions are not rounded by the way there and back.
+    std::vector<Vec2> rest(scene.fluid_x.size()), index(scene.fluid_x.size());
+    for (std::size_t k = 0; k < rest.size(); ++k) {
+      rest[k] = back.rotated(scene.fluid_x[k] - pose.shift);
+      index[k] = Vec2(static_cast<double>(k), 0);
+    }
+    const std::vector<Vec2> samples(scene.boundary_x.begin() + obj.first, scene.boundary_x.begin() + obj.first + obj.count);
+    removed += shapes::remove_covered_fluid(rest, index, {walls[i]}, samples, h, &near);
+    scene.fluid_near_samples += near;
+    std::vector<Vec2> x, v;
+    for (const Vec2& k : index) {
+      x.push_back(scene.fluid_x[static_cast<std::size_t>(k.x())]);
+      v.push_back(scene.fluid_v[static_cast<std::size_t>(k.x())]);
+    }
+    scene.fluid_x = std::move(x);
+    scene.fluid_v = std::move(v);
+  }
+  return removed;
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& file, const std::vector<std::string>& overrides) {
   const Context ctx{file};
   json root = parse_json(text, ctx);
+  // Before the overrides: one of them (e.g. --duration's time.duration) would otherwise
+  // report the wrong type as its own mistake.
+  if (!root.is_object()) throw SceneError(file + ": the scene must be a JSON object {...}, got " + show(root));
   for (const auto& o : overrides) apply_override(root, o);
 
   Scene scene;
@@ -930,6 +1046,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
 
   std::string stem = std::filesystem::path(file).stem().string();
   scene.name = name ? ctx.string(*name, "/name") : (stem.empty() ? "scene" : stem);
+  check_name(ctx, scene.name);
   if (!spacing) ctx.fail("/spacing", "missing required key; the fluid particle spacing in m, a number > 0");
   scene.spacing = ctx.number(*spacing, "/spacing", Range::positive("[m]"));
   const double h = scene.spacing;
@@ -1038,8 +1155,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
   }
   if (blocks.size() > 1) shapes::merge_duplicates(scene.fluid_x, scene.fluid_v, h, 1e-9 * h);
   const std::size_t lattice_points = scene.fluid_x.size();
-  scene.fluid_removed = shapes::remove_covered_fluid(scene.fluid_x, scene.fluid_v, walls, scene.boundary_x, h,
-                                                     &scene.fluid_near_samples);
+  scene.fluid_removed = remove_fluid_at_start(scene, walls, h);
   if (scene.fluid_x.empty())
     ctx.fail("/fluid", "the scene has no fluid particles (" + std::to_string(lattice_points) +
                            (lattice_points ? " lattice points, all removed inside boundaries)"

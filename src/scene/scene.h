@@ -14,6 +14,10 @@
 
 namespace sluice {
 
+// The shortest run (time.duration) and still or montage time after 0 [s]: shorter
+// steps than that leave the solvers' divisions by dt^2 without precision.
+inline constexpr double kMinDuration = 1e-6;
+
 // A user mistake in a scene file or an override: the message names the file, the JSON
 // path (e.g. /solver/tolerance), the value and what is allowed.
 class SceneError : public std::runtime_error {

@@ -61,6 +61,17 @@ bool segments_cross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) 
   return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
 }
 
+// Collinear segments sharing a stretch of positive length (a polyline running back over
+// itself): segments_cross() sees no sign change there.
+bool segments_overlap(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const Vec2 ab = b - a;
+  if (cross(ab, c - a) != 0 || cross(ab, d - a) != 0) return false;
+  const double len2 = ab.squaredNorm();
+  if (!(len2 > 0)) return false;
+  const double tc = (c - a).dot(ab) / len2, td = (d - a).dot(ab) / len2;
+  return std::min(std::max(tc, td), 1.0) - std::max(std::min(tc, td), 0.0) > 0;
+}
+
 std::size_t segment_count(std::size_t points, bool closed) {
   return closed ? points : (points > 0 ? points - 1 : 0);
 }
@@ -100,10 +111,12 @@ bool point_in_polygon(const std::vector<Vec2>& poly, const Vec2& p) {
 int self_intersection(const std::vector<Vec2>& points, bool closed) {
   const std::size_t n = points.size(), segs = segment_count(n, closed);
   for (std::size_t i = 0; i < segs; ++i)
-    for (std::size_t j = i + 2; j < segs; ++j) {
-      if (closed && i == 0 && j == segs - 1) continue;  // adjacent through the closing corner
-      if (segments_cross(points[i], points[(i + 1) % n], points[j], points[(j + 1) % n]))
-        return static_cast<int>(i);
+    for (std::size_t j = i + 1; j < segs; ++j) {
+      const Vec2 &a = points[i], &b = points[(i + 1) % n], &c = points[j], &d = points[(j + 1) % n];
+      // Segments that share a corner (neighbours, or the first and last of a closed chain)
+      // may only overlap by folding back; any other pair must neither cross nor overlap.
+      const bool adjacent = j == i + 1 || (closed && i == 0 && j == segs - 1);
+      if (segments_overlap(a, b, c, d) || (!adjacent && segments_cross(a, b, c, d))) return static_cast<int>(i);
     }
   return -1;
 }
@@ -159,6 +172,9 @@ std::vector<Vec2> fill_lattice(const FluidShape& shape, double h) {
   shape.bounding_box(lo, hi);
   const long long nx = lattice_count(lo.x(), hi.x(), h), ny = lattice_count(lo.y(), hi.y(), h);
   std::vector<Vec2> out;
+  // A polygon without area (all points on one line) holds no fluid; the crossing test
+  // would count lattice points on its edges as inside.
+  if (shape.kind == FluidShape::Kind::Polygon && signed_area(shape.points) == 0) return out;
   if (shape.kind == FluidShape::Kind::Rectangle) out.reserve(static_cast<std::size_t>(nx * ny));
   for (long long j = 0; j < ny; ++j)
     for (long long i = 0; i < nx; ++i) {

@@ -98,8 +98,9 @@ ImageConfig resolve_image(const ImageOptions& o, const Scene& scene) {
   } else if (o.range.empty()) {
     c.lo = rs.range_lo;
     c.hi = rs.range_hi;
-  } else if (!parse_pair(o.range, c.lo, c.hi) || !(c.hi > c.lo)) {
-    throw FlagError("--range", o.range, "expected lo:hi with lo < hi, e.g. 0:1, or auto");
+  } else if (!parse_pair(o.range, c.lo, c.hi) || !(c.hi > c.lo) || !std::isfinite(c.hi - c.lo)) {
+    // hi - lo finite: no NaN or infinity, and the colour (v - lo) / (hi - lo) is defined.
+    throw FlagError("--range", o.range, "expected lo:hi, finite numbers with lo < hi and hi - lo finite, e.g. 0:1, or auto");
   }
   c.frame.field_label = field_label(c.field);
   c.frame.colorbar = !o.no_colorbar;
