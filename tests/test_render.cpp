@@ -11,10 +11,13 @@
 // Without an EGL display these tests fail with the EGL error; they never skip.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 
 #include "render/colormap.h"
+#include "render/font.h"
 #include "render/frame.h"
 #include "render/image.h"
 #include "scene/scene.h"
@@ -121,6 +124,170 @@ TEST(RenderGolden, MovingBoundaryAndViewWindow) {
                                  "render_moving.json");
   view::ImageOptions from_scene;  // every image setting from the scene's render section
   check_frames(scene, {{"render_moving_frame4_pressure_viridis.png", 4, from_scene}});
+}
+
+// --- Text (no EGL) -------------------------------------------------------------------
+
+long ink(const Image& img) {
+  long n = 0;
+  for (size_t i = 0; i < img.rgb.size(); i += 3) n += img.rgb[i] < 128;
+  return n;
+}
+
+Image text_image(const std::string& text, int px) {
+  Image img(text_width(text, px) + 4, line_height(px) + 4);
+  fill_rect(img, 0, 0, img.width, img.height, {255, 255, 255});
+  draw_text(img, 2, 2, text, px, {0, 0, 0});
+  return img;
+}
+
+TEST(Font, MixedCaseDrawsWithInk) {
+  const Image lower = text_image("t = 0.500 s", 20), upper = text_image("T = 0.500 S", 20);
+  EXPECT_GT(ink(lower), 50);
+  EXPECT_GT(ink(upper), 50);
+  EXPECT_NE(lower.rgb, upper.rgb);  // lower case is its own glyphs, not capitals
+  // Proportional: "m" is wider than "i" (the bitmap font gave every glyph 6 columns).
+  EXPECT_GT(text_width("mmmm", 20), text_width("iiii", 20) + 20);
+  // Text grows with its size.
+  EXPECT_GT(text_width("speed [m/s]", 40), text_width("speed [m/s]", 20) + 60);
+}
+
+TEST(Font, MiddleDotAndBracketsAreGlyphsNotBoxes) {
+  // U+FFFF is not in the font: it draws as the missing-glyph box, which has more ink
+  // than a middle dot and differs from it.
+  const Image dot = text_image("\u00b7", 30), missing = text_image("\uffff", 30);
+  EXPECT_GT(ink(dot), 0);
+  EXPECT_LT(ink(dot), ink(missing));
+  EXPECT_NE(text_image("Pa\u00b7m", 20).rgb, text_image("Pa m", 20).rgb);
+  EXPECT_NE(text_image("[", 30).rgb, text_image("\uffff", 30).rgb);
+}
+
+TEST(Font, FitTextSizeShrinksToTheWidth) {
+  const std::string label = "density error [%]";
+  const int px = fit_text_size(label, 20, 100);
+  EXPECT_LT(px, 20);
+  EXPECT_LE(text_width(label, px), 100);
+  EXPECT_EQ(fit_text_size("CFL", 20, 100), 20);
+}
+
+// --- Colorbar ticks (no EGL) -----------------------------------------------------------
+
+// True when v / step is an integer and step is 1, 2 or 5 times a power of ten.
+bool round_multiple(double v, double step) {
+  const double p = std::pow(10.0, std::floor(std::log10(step) + 1e-9));
+  const double m = step / p;
+  const bool one_two_five = std::fabs(m - 1) < 1e-9 || std::fabs(m - 2) < 1e-9 || std::fabs(m - 5) < 1e-9;
+  return one_two_five && std::fabs(v / step - std::round(v / step)) < 1e-6;
+}
+
+TEST(ColorbarTicks, AreOneTwoFiveMultiplesInsideTheRange) {
+  const double ranges[][2] = {{0, 3.962}, {0, 1}, {0, 19620}, {-0.37, 0.81}, {0, 6.264}, {1e-5, 3e-5}, {100, 101}};
+  for (const auto& r : ranges) {
+    const double step = nice_step(r[0], r[1]);
+    const std::vector<double> ticks = nice_ticks(r[0], r[1]);
+    ASSERT_GE(ticks.size(), 3u) << r[0] << ":" << r[1];
+    EXPECT_LE(ticks.size(), 7u) << r[0] << ":" << r[1];
+    for (double t : ticks) {
+      EXPECT_TRUE(round_multiple(t, step)) << t << " step " << step;
+      EXPECT_GE(t, r[0] - 1e-12);
+      EXPECT_LE(t, r[1] + 1e-12);
+    }
+  }
+  // The issue's range: 0..3.962 had ticks at its quarters (0.9905, 1.981, ...).
+  EXPECT_EQ(nice_ticks(0, 3.962), (std::vector<double>{0, 1, 2, 3}));
+}
+
+TEST(ColorbarTicks, LabelsHaveTheStepsDecimals) {
+  EXPECT_EQ(tick_label(0, 0.2), "0");
+  EXPECT_EQ(tick_label(0.6000000000000001, 0.2), "0.6");
+  EXPECT_EQ(tick_label(0.25, 0.05), "0.25");
+  EXPECT_EQ(tick_label(15000, 5000), "15000");
+  EXPECT_EQ(tick_label(2e-5, 1e-5), "2.0e-05");
+}
+
+// --- Layout (EGL) ------------------------------------------------------------------------
+
+// The rightmost column of row `y` holding the walls' grey.
+int rightmost_wall(const Image& img, int y) {
+  for (int x = img.width - 1; x >= 0; --x) {
+    const std::uint8_t* p = img.at(x, y);
+    if (p[0] == 150 && p[1] == 150 && p[2] == 150) return x;
+  }
+  return -1;
+}
+
+Image still_at_start(const Scene& scene, const view::ImageOptions& o) {
+  Simulation sim(scene);
+  const view::ImageConfig config = view::resolve_image(o, scene);
+  FrameRenderer renderer(config.frame);
+  view::FrameBuilder builder(config, sim);
+  Image img;
+  renderer.render(builder.build(sim, 0, nullptr), img);
+  return img;
+}
+
+TEST(RenderLayout, TankLinesUpAcrossColourFields) {
+  const Scene scene = parse_scene(kScene, "render_test.json");
+  view::ImageOptions a = options("speed", "spectrum", 0), b = options("density_error", "spectrum", 0);
+  a.resolution = b.resolution = "1280x720";
+  const Image ia = still_at_start(scene, a), ib = still_at_start(scene, b);
+  const FrameLayout L = fit_layout(view::resolve_image(a, scene).frame);
+  const int y = (L.scene_y0 + L.scene_y1) / 2;
+  ASSERT_GT(rightmost_wall(ia, y), 0);
+  EXPECT_EQ(rightmost_wall(ia, y), rightmost_wall(ib, y));
+  // The same scene pixels, apart from the colours of the fluid (both blue at rest: equal).
+  for (int row = L.band_h; row < 720; row += 37)
+    for (int x = 0; x < L.strip_x; ++x)
+      ASSERT_EQ(0, std::memcmp(ia.at(x, row), ib.at(x, row), 3)) << x << "," << row;
+  // The colorbar sits beside the tank: the issue measured 240 px of white between them.
+  EXPECT_LT(L.bar_x - L.scene_x1, 3 * L.text_px);
+  EXPECT_GT(L.bar_x, L.scene_x1);
+}
+
+TEST(RenderLayout, OverlayBandDoesNotGrowWithItsText) {
+  FrameSettings s;
+  s.width = 640;
+  s.height = 360;
+  s.bounds_max[0] = 0.4;
+  s.bounds_max[1] = 0.25;
+  FrameRenderer r(s);
+  const std::vector<double> xy = {0.1, 0.1, 0.2, 0.1};
+  const std::vector<float> v = {0.2f, 0.8f};
+  FrameData d;
+  d.fluid_xy = xy;
+  d.fluid_value = v;
+  d.diameter = 0.01;
+  Image early, late;
+  d.overlay = view::overlay_text(view::Overlay::full, 0.0, 0, 0, 0);
+  r.render(d, early);
+  d.overlay = view::overlay_text(view::Overlay::full, 12.345, 1234, 1234567, 87);
+  r.render(d, late);
+  const FrameLayout& L = r.layout();
+  ASSERT_GT(L.band_h, 0);
+  // Everything below the band is the same pixels; the band spans the image at one height.
+  EXPECT_EQ(0, std::memcmp(early.at(0, L.band_h), late.at(0, L.band_h), 3u * 640 * (360 - L.band_h)));
+  for (const Image* img : {&early, &late})
+    for (int y = 0; y < L.band_h - 1; ++y) EXPECT_EQ(img->at(639, y)[0], 245) << "row " << y;
+  EXPECT_NE(early.rgb, late.rgb);
+}
+
+TEST(RenderLayout, OverlayModesAndTitleRows) {
+  EXPECT_EQ(view::overlay_text(view::Overlay::time, 0.5, 10, 500, 3), "t = 0.500 s");
+  EXPECT_EQ(view::overlay_text(view::Overlay::none, 0.5, 10, 500, 3), "");
+  EXPECT_EQ(view::overlay_text(view::Overlay::full, 0.5, 10, 500, 3).rfind("t = 0.500 s", 0), 0u);
+  const Scene scene = parse_scene(kScene, "render_test.json");
+  view::ImageOptions o = options("cfl", "spectrum", 0);
+  const int one_row = fit_layout(view::resolve_image(o, scene).frame).band_h;
+  o.title = "Dam break";
+  const int two_rows = fit_layout(view::resolve_image(o, scene).frame).band_h;
+  o.title.clear();
+  o.overlay = "none";
+  const int none = fit_layout(view::resolve_image(o, scene).frame).band_h;
+  EXPECT_EQ(none, 0);
+  EXPECT_GT(one_row, 0);
+  EXPECT_GT(two_rows, one_row + one_row / 2);
+  o.overlay = "sometimes";
+  EXPECT_THROW(view::resolve_image(o, scene), view::FlagError);
 }
 
 TEST(RenderCompare, CountsPixelsBeyondTolerance) {

@@ -128,6 +128,7 @@ struct MontageOptions {
   std::string colormap;    // empty: the scene's render.colormap
   std::string range;       // "lo:hi" or "auto"; empty: the scene's render range
   std::string title;
+  std::string overlay = "time";  // each cell's band: full | time | none
   std::string output;      // empty: <output directory>/montage.png
   int threads = 0;
 };

@@ -121,7 +121,15 @@ int main(int argc, char** argv) {
     cmd->add_option("--colormap", io.colormap, "spectrum (blue to red), viridis, turbo (default: render.colormap, spectrum)")
         ->check(CLI::IsMember({"spectrum", "viridis", "turbo"}));
     cmd->add_option("--range", io.range, "Colour range lo:hi, or auto (fixed for the run from the scene: cfl 0:1, speed 0:sqrt(2 g H), pressure 0:rho0 g H, density_error 0:1; default: render.range)");
-    cmd->add_flag("--no-overlay", io.no_overlay, "No time/frame/step/iterations line");
+    cmd->add_option("--overlay", io.overlay, "Overlay line above the scene: full (time, frame, step, iterations; default), time, none")
+        ->check(CLI::IsMember({"full", "time", "none"}));
+    cmd->add_flag("--no-overlay", io.no_overlay, "The same as --overlay none");
+    cmd->add_option("--title", io.title, "Title line above the scene (UTF-8)");
+    cmd->add_option("--particle-scale", io.particle_scale, "Disc diameter as a multiple of the particle spacing (default 1; > 0, <= 10)")
+        ->check(number_check(false, 0, true, 10));
+    cmd->add_option("--background", io.background, "Background colour: #rrggbb or a name (white, black, grey, ...; default white)");
+    cmd->add_option("--object-color", io.object_colors, "Colour of a boundary object: NAME=COLOUR (repeatable; default grey walls, slate moving objects)")
+        ->take_all();
     cmd->add_flag("--no-colorbar", io.no_colorbar, "No colorbar");
     cmd->add_option("--msaa", io.msaa, "Multisampling: 0 (default) or 4")->check(CLI::IsMember({0, 4}));
     cmd->add_option("--egl", io.egl, "EGL platform: auto (default: surfaceless, then device), surfaceless, device")
@@ -168,6 +176,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"spectrum", "viridis", "turbo"}));
   montagecmd->add_option("--range", mont.range, "Colour range lo:hi or auto, shared by all cells (default: render.range)");
   montagecmd->add_option("--title", mont.title, "Title line above the grid");
+  montagecmd->add_option("--overlay", mont.overlay, "Each cell's label band: time (default), full (also frame, step, iterations), none")
+      ->check(CLI::IsMember({"full", "time", "none"}));
   montagecmd->add_option("-o,--output", mont.output, "PNG file (default: <output directory>/montage.png)");
   montagecmd->add_option("--threads", mont.threads, "OpenMP threads")->check(threads);
 

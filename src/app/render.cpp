@@ -210,7 +210,7 @@ int run_bench_render(const BenchRenderOptions& o) {
       d.fluid_xy = xy;
       d.fluid_value = val;
       d.diameter = h;
-      d.overlay = "T = 1.000 S   FRAME 30   STEP 1000   ITER 5";
+      d.overlay = overlay_text(Overlay::full, 1.0, 30, 1000, 5);
       std::vector<double> draw, read, annotate, png;
       size_t bytes = 0;
       Image img;

@@ -71,6 +71,11 @@ json run_record(const RenderOptions& o) {
             {"colormap", i.colormap},
             {"range", i.range},
             {"no_overlay", i.no_overlay},
+            {"overlay", i.overlay},
+            {"title", i.title},
+            {"particle_scale", i.particle_scale},
+            {"background", i.background},
+            {"object_colors", i.object_colors},
             {"no_colorbar", i.no_colorbar},
             {"msaa", i.msaa},
             {"egl", i.egl}}},
@@ -108,6 +113,12 @@ RenderOptions resumed_options(const RenderOptions& given) {
     o.image.colormap = i.at("colormap").get<std::string>();
     o.image.range = i.at("range").get<std::string>();
     o.image.no_overlay = i.at("no_overlay").get<bool>();
+    // Added later: records of older runs lack them and take the defaults.
+    o.image.overlay = i.value("overlay", std::string());
+    o.image.title = i.value("title", std::string());
+    o.image.particle_scale = i.value("particle_scale", 1.0);
+    o.image.background = i.value("background", std::string());
+    o.image.object_colors = i.value("object_colors", std::vector<std::string>());
     o.image.no_colorbar = i.at("no_colorbar").get<bool>();
     o.image.msaa = i.at("msaa").get<int>();
     o.image.egl = i.at("egl").get<std::string>();
