@@ -49,6 +49,9 @@ struct RenderOptions {
   std::string frames;      // "A:B": render only frames A..B (the run stops at B)
   ImageOptions image;
   bool no_video = false;
+  std::string format = "mp4";    // video container: mp4 | webm | gif
+  int crf = -1;                  // video quality (< 0: the format's default)
+  std::string frame_pattern = "frame_%05d.png";  // the PNG frames' names (printf, one %d)
   int threads = 0;
   std::vector<std::string> set;
   bool quiet = false;

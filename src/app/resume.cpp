@@ -80,6 +80,9 @@ json run_record(const RenderOptions& o) {
             {"msaa", i.msaa},
             {"egl", i.egl}}},
           {"no_video", o.no_video},
+          {"format", o.format},
+          {"crf", o.crf},
+          {"frame_pattern", o.frame_pattern},
           {"set", o.set},
           {"checkpoint_every", o.checkpoint_every}};
 }
@@ -123,6 +126,9 @@ RenderOptions resumed_options(const RenderOptions& given) {
     o.image.msaa = i.at("msaa").get<int>();
     o.image.egl = i.at("egl").get<std::string>();
     o.no_video = r.at("no_video").get<bool>();
+    o.format = r.value("format", std::string("mp4"));
+    o.crf = r.value("crf", -1);
+    o.frame_pattern = r.value("frame_pattern", std::string("frame_%05d.png"));
     o.set = r.at("set").get<std::vector<std::string>>();
     if (o.checkpoint_every <= 0) o.checkpoint_every = r.at("checkpoint_every").get<int>();
   });

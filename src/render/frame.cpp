@@ -66,6 +66,10 @@ std::string tick_label(double v, double step) {
 
 int colorbar_label_width(int px) { return px / 3 + px / 4 + text_width(kWidestTick, px); }
 
+int colorbar_width(int px, int bar_w) {
+  return std::max(bar_w + colorbar_label_width(px), text_width("density error [%]", px));
+}
+
 FrameLayout fit_layout(const FrameSettings& s) {
   FrameLayout L;
   L.text_px = frame_text_px(s.height);
@@ -76,7 +80,7 @@ FrameLayout fit_layout(const FrameSettings& s) {
     L.bar_w = std::max(6, L.text_px * 3 / 4);
     // gap to the scene, bar, ticks and labels, right pad; the field's name above the bar
     // is sized to this width rather than the width to the name.
-    L.strip_w = 2 * L.pad + L.bar_w + colorbar_label_width(L.text_px) + L.pad;
+    L.strip_w = 2 * L.pad + colorbar_width(L.text_px, L.bar_w) + L.pad;
   }
   const double avail_w = std::max(1, s.width - L.strip_w), avail_h = std::max(1, s.height - L.band_h);
   const double sw = std::max(1e-9, s.bounds_max[0] - s.bounds_min[0]);
@@ -108,20 +112,26 @@ FrameLayout fit_layout(const FrameSettings& s) {
 FrameRenderer::FrameRenderer(const FrameSettings& s)
     : s_(s), layout_(fit_layout(s)), cmap_(s.colormap), gl_(s.width, s.height, s.msaa, s.egl) {}
 
-void draw_colorbar_bar(Image& img, int x, int y, int w, int h, int px, const Colormap& cmap, double lo, double hi) {
+Rgb ink_on(Rgb bg) {
+  const int luma = (299 * bg.r + 587 * bg.g + 114 * bg.b) / 1000;  // Rec. 601 weights
+  return luma >= 128 ? kInk : Rgb{235, 235, 235};
+}
+
+void draw_colorbar_bar(Image& img, int x, int y, int w, int h, int px, const Colormap& cmap, double lo, double hi,
+                       Rgb ink) {
   // The bar, top = hi.
   for (int j = 0; j < h; ++j) fill_rect(img, x, y + j, w, 1, cmap.at(1.0 - (j + 0.5) / h));
   // Frame around it and ticks with labels.
-  fill_rect(img, x - 1, y - 1, w + 2, 1, kInk);
-  fill_rect(img, x - 1, y + h, w + 2, 1, kInk);
-  fill_rect(img, x - 1, y - 1, 1, h + 2, kInk);
-  fill_rect(img, x + w, y - 1, 1, h + 2, kInk);
+  fill_rect(img, x - 1, y - 1, w + 2, 1, ink);
+  fill_rect(img, x - 1, y + h, w + 2, 1, ink);
+  fill_rect(img, x - 1, y - 1, 1, h + 2, ink);
+  fill_rect(img, x + w, y - 1, 1, h + 2, ink);
   const double step = nice_step(lo, hi, kTickTarget);
   for (double v : nice_ticks(lo, hi, kTickTarget)) {
     const double f = (v - lo) / (hi - lo);
     const int ty = y + h - static_cast<int>(std::lround(f * (h - 1))) - 1;
-    fill_rect(img, x + w, ty, px / 3, std::max(1, px / 10), kInk);
-    draw_text(img, x + w + px / 3 + px / 4, centred_top(ty, px), tick_label(v, step), px, kInk);
+    fill_rect(img, x + w, ty, px / 3, std::max(1, px / 10), ink);
+    draw_text(img, x + w + px / 3 + px / 4, centred_top(ty, px), tick_label(v, step), px, ink);
   }
 }
 
@@ -131,11 +141,13 @@ void draw_colorbar(Image& img, const FrameLayout& L, const Colormap& cmap, doubl
                    const std::string& title, Rgb background) {
   // The strip is the colorbar's own: particles outside the view window may reach it.
   fill_rect(img, L.strip_x, L.band_h, img.width - L.strip_x, img.height - L.band_h, background);
-  draw_colorbar_bar(img, L.bar_x, L.bar_y, L.bar_w, L.bar_h, L.text_px, cmap, lo, hi);
+  const Rgb ink = ink_on(background);
+  draw_colorbar_bar(img, L.bar_x, L.bar_y, L.bar_w, L.bar_h, L.text_px, cmap, lo, hi, ink);
   // The field's name above the bar, smaller when it would leave the strip.
   const int room = img.width - L.bar_x - L.pad;
   const int px = fit_text_size(title, L.text_px, room);
-  draw_text(img, L.bar_x, L.bar_y - line_height(L.text_px) - L.pad, title, px, kInk);
+  // Half a line clear of the top tick's label, which is centred on the bar's top.
+  draw_text(img, L.bar_x, L.bar_y - line_height(L.text_px) - L.text_px / 2, title, px, ink);
 }
 
 // The top band: title row, then overlay row. Its size is fixed by fit_layout.

@@ -91,8 +91,15 @@ std::string tick_label(double v, double step);
 
 // A colorbar's bar at (x, y), w x h pixels, top = hi, with its frame and round labelled
 // ticks at its right (labels px high). Frames and montages draw their colorbars with it.
-void draw_colorbar_bar(Image& img, int x, int y, int w, int h, int px, const Colormap& cmap, double lo, double hi);
+void draw_colorbar_bar(Image& img, int x, int y, int w, int h, int px, const Colormap& cmap, double lo, double hi,
+                       Rgb ink = {25, 25, 25});
+// Near-black labels on a light background, near-white on a dark one (--background).
+Rgb ink_on(Rgb background);
 // Columns the tick marks and labels need right of the bar at `px`, whatever the values.
 int colorbar_label_width(int px);
+// Columns the colorbar needs from the bar's left edge at `px`: its ticks and labels, or
+// the widest field name the program gives it ("density error [%]"), whichever is
+// wider; longer names are drawn smaller. Never the actual name: fields line up.
+int colorbar_width(int px, int bar_w);
 
 }  // namespace sluice::render

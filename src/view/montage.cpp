@@ -29,7 +29,7 @@ int title_px(int s) { return text_px(s) * 4 / 3; }
 
 int line_height(int s) { return render::line_height(text_px(s)) + s; }
 
-int colorbar_strip_width(int s) { return 8 * s + colorbar_label_width(text_px(s)); }
+int colorbar_strip_width(int s) { return colorbar_width(text_px(s), 8 * s); }
 
 // `text` shortened with ".." until it fits `width` pixels: a long label must not run
 // into the neighbouring cell's band. Labels lose their start ("..PRESSURE = ZERO"), since
@@ -58,7 +58,8 @@ void draw_colorbar(Image& img, const MontageLayout& L, const MontageColorbar& c)
   // The field's name in the band above the bar, as each cell's labels are above the
   // cell; smaller when it is wider than the strip (the layout never depends on it).
   const int room = L.width - L.bar_x - L.margin / 2;
-  draw_text(img, L.bar_x, L.bar_y - line_height(s) - s, c.label, fit_text_size(c.label, px, room), kInk);
+  // A third of a line clear of the top tick's label, which is centred on the bar's top.
+  draw_text(img, L.bar_x, L.bar_y - line_height(s) - px / 3, c.label, fit_text_size(c.label, px, room), kInk);
 }
 
 void check_cells(const std::vector<MontageCell>& cells) {
