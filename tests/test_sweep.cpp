@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "analysis/csv.h"
 #include "analysis/sweep.h"
 #include "test_util.h"
 
@@ -69,7 +70,7 @@ TEST(Sweep, CsvRoundTrip) {
   EXPECT_DOUBLE_EQ(back[0].ms_phase[2], 0.125);
   EXPECT_DOUBLE_EQ(back[1].avg_density_error, 0.1);
   std::ofstream(path) << "not,a,bench,csv\n";
-  EXPECT_THROW(analysis::read_sweep_csv(path.string()), SceneError);
+  EXPECT_THROW(analysis::read_sweep_csv(path.string()), analysis::InputError);
   std::filesystem::remove(path);
 }
 

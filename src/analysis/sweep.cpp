@@ -115,15 +115,15 @@ std::string sweep_csv(const std::vector<SweepRun>& runs) {
 
 std::vector<SweepRun> read_sweep_csv(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw SceneError(path + ": cannot open file");
+  if (!in) throw InputError(path + ": cannot open file");
   std::string line;
   if (!std::getline(in, line) || line != kHeader)
-    throw SceneError(path + ": line 1: not a sluice bench CSV (expected the header " + std::string(kHeader) + ")");
+    throw InputError(path + ": line 1: not a sluice bench CSV (expected the header " + std::string(kHeader) + ")");
   std::vector<SweepRun> runs;
   for (long n = 2; std::getline(in, line); ++n) {
     if (line.empty()) continue;
     const auto f = parse_csv_line(line);
-    if (f.size() != 21) throw SceneError(path + ": line " + std::to_string(n) + ": expected 21 fields, found " + std::to_string(f.size()));
+    if (f.size() != 21) throw InputError(path + ": line " + std::to_string(n) + ": expected 21 fields, found " + std::to_string(f.size()));
     try {
       SweepRun r;
       r.scene = f[0];
@@ -142,7 +142,7 @@ std::vector<SweepRun> read_sweep_csv(const std::string& path) {
       for (int k = 0; k < 6; ++k) r.ms_phase[k] = std::stod(f[14 + k]);
       runs.push_back(r);
     } catch (const std::logic_error&) {
-      throw SceneError(path + ": line " + std::to_string(n) + ": a field that should be a number is not");
+      throw InputError(path + ": line " + std::to_string(n) + ": a field that should be a number is not");
     }
   }
   return runs;
