@@ -11,6 +11,7 @@
 
 #include "analysis/csv.h"
 #include "analysis/figures.h"
+#include "app/eta.h"
 #include "analysis/plot.h"
 #include "scene/scene.h"
 #include "test_process.h"
@@ -168,6 +169,23 @@ TEST(Figures, BadInputNamesTheFileTheColumnAndWhatIsAllowed) {
   } catch (const analysis::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("line 3: 1 fields, the header has 2"), std::string::npos) << e.what();
   }
+}
+
+// The progress line's ETA (src/app/eta.h): none before a few frames, then the recent
+// frames' pace rather than the pace since the start.
+TEST(Eta, NoEstimateBeforeAFewFramesThenTheRecentPace) {
+  app::EtaEstimate eta(10, 3);
+  eta.add(0, 0);
+  eta.add(17, 0.1);  // the first frame carries 16 s of set-up
+  EXPECT_FALSE(eta.seconds_left(2.0).has_value());
+  eta.add(18, 0.2);
+  eta.add(19, 0.3);
+  EXPECT_FALSE(eta.seconds_left(2.0).has_value());  // three frames: still none
+  for (int k = 4; k <= 14; ++k) eta.add(19 + (k - 3), 0.1 * k);  // then 1 s per 0.1 s
+  ASSERT_TRUE(eta.seconds_left(2.0).has_value());
+  // 0.6 s left at 10 s per simulated second; since the start it would say about 14 s.
+  EXPECT_NEAR(*eta.seconds_left(2.0), 6.0, 1e-9);
+  EXPECT_EQ(*eta.seconds_left(1.0), 0.0);  // past the end
 }
 
 TEST(Figures, MarkdownTableChoosesColumnsAndEscapes) {
