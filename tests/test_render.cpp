@@ -198,6 +198,8 @@ TEST(ColorbarTicks, AreOneTwoFiveMultiplesInsideTheRange) {
       EXPECT_LE(t, r[1] + 1e-12);
     }
   }
+  EXPECT_TRUE(nice_ticks(1, 1).empty());  // no range, no ticks (and no endless loop)
+  EXPECT_TRUE(nice_ticks(0, HUGE_VAL).empty());
   // The range: 0..3.962 had ticks at its quarters (0.9905, 1.981, ...).
   EXPECT_EQ(nice_ticks(0, 3.962), (std::vector<double>{0, 1, 2, 3}));
 }

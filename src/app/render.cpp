@@ -114,7 +114,8 @@ int run_render(const RenderOptions& given) {
   check_frame_pattern(o.frame_pattern);
   if (!o.no_video && format != VideoFormat::gif && (config.frame.width % 2 != 0 || config.frame.height % 2 != 0))
     throw FlagError("--resolution", o.image.resolution,
-                    "H.264 and VP9 (yuv420p) need even width and height; or pass --no-video or --format gif");
+                    std::string(format == VideoFormat::mp4 ? "H.264" : "VP9") +
+                        " (yuv420p) needs even width and height; or pass --no-video or --format gif");
   const fs::path dir = o.output_dir.empty() ? fs::path(scene.output.directory) : fs::path(o.output_dir);
   const fs::path frames_dir = dir / "frames";
   // A resumed run continues the run in `dir`; a fresh one must not mix with an old one.

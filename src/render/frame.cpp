@@ -42,8 +42,9 @@ double nice_step(double lo, double hi, int target) {
 }
 
 std::vector<double> nice_ticks(double lo, double hi, int target) {
-  const double step = nice_step(lo, hi, target);
   std::vector<double> ticks;
+  if (!(hi > lo) || !std::isfinite(hi - lo)) return ticks;  // no range to divide
+  const double step = nice_step(lo, hi, target);
   // Integer multiples of the step (k * step, never accumulated sums: 0.1 + 0.2 != 0.3).
   const double eps = 1e-9 * step;
   for (long k = static_cast<long>(std::ceil((lo - eps) / step)); k * step <= hi + eps; ++k)
