@@ -11,6 +11,7 @@
 
 #include "analysis/csv.h"
 #include "analysis/figures.h"
+#include "app/eta.h"
 #include "analysis/plot.h"
 #include "scene/scene.h"
 #include "test_process.h"
@@ -104,16 +105,45 @@ TEST(Figures, LegendGoesWhereItCoversNoData) {
   FigureSpec s;
   s.inputs = {t.path};
   s.x = "particles";
-  s.y = {"us_per_particle_step", "us_neighbors_per_particle"};  // two long labels: room above the data
-  EXPECT_NE(analysis::figure_script(s, analysis::figure_series(s, {t})).find("set offsets 0, 0, graph 0.17"), std::string::npos);
-  s.y = {"a", "b"};  // two short ones stay inside
-  std::string gp = analysis::figure_script(s, analysis::figure_series(s, {t}));
-  EXPECT_EQ(gp.find("set offsets"), std::string::npos);
-  EXPECT_EQ(gp.find("set key outside"), std::string::npos);
-  s.y = {"a", "b", "c", "us_per_particle_step", "us_neighbors_per_particle"};  // many: beside it
-  gp = analysis::figure_script(s, analysis::figure_series(s, {t}));
-  EXPECT_NE(gp.find("set key outside right top"), std::string::npos);
-  EXPECT_EQ(gp.find("set offsets"), std::string::npos);
+  for (const auto& y : std::vector<std::vector<std::string>>{{"a"}, {"a", "b"}, {"a", "b", "c", "us_per_particle_step"}}) {
+    s.y = y;
+    const std::string gp = analysis::figure_script(s, analysis::figure_series(s, {t}));
+    // Above the plot, whatever the entries: inside, it covered the spikes at t = 0.
+    EXPECT_NE(gp.find("set key outside top center horizontal"), std::string::npos) << gp;
+    EXPECT_EQ(gp.find("set key top left"), gp.rfind("set key top left")) << gp;  // only the preamble's default
+  }
+}
+
+TEST(Figures, MeanLineEndsWithItsRun) {
+  const CaseDir dir;
+  const auto a = table_of(dir, "a/stats.csv", "time,iterations\n0,4\n0.5,6\n1.0,8\n");
+  const auto b = table_of(dir, "b/stats.csv", "time,iterations\n0,2\n0.25,4\n");
+  FigureSpec s;
+  s.inputs = {a.path, b.path};
+  s.y = {"iterations"};
+  s.mean = true;
+  const std::string gp = analysis::figure_script(s, analysis::figure_series(s, {a, b}));
+  // Each mean is a segment over its run's times, not a line across the whole axis.
+  EXPECT_NE(gp.find("$m0 << EOD\n0 6\n1 6\nEOD"), std::string::npos) << gp;
+  EXPECT_NE(gp.find("$m1 << EOD\n0 3\n0.25 3\nEOD"), std::string::npos) << gp;
+  EXPECT_EQ(gp.find("\n     6 with lines"), std::string::npos) << gp;
+}
+
+TEST(Figures, CrowdedBoxLabelsAreSlantedOnOneLine) {
+  const CaseDir dir;
+  const auto a = table_of(dir, "runA/stats.csv", "ms_neighbors,ms_nonpressure,ms_pressure\n1,2,3\n2,3,4\n");
+  const auto b = table_of(dir, "runB/stats.csv", "ms_neighbors,ms_nonpressure,ms_pressure\n1,2,3\n2,3,4\n");
+  FigureSpec s;
+  s.kind = FigureKind::Box;
+  s.inputs = {a.path};
+  s.y = {"ms_neighbors", "ms_nonpressure", "ms_pressure"};
+  std::string gp = analysis::figure_script(s, analysis::figure_series(s, {a}));
+  EXPECT_EQ(gp.find("rotate"), std::string::npos);  // three boxes: two-line labels fit
+  s.inputs = {a.path, b.path};
+  gp = analysis::figure_script(s, analysis::figure_series(s, {a, b}));
+  EXPECT_NE(gp.find("rotate by 30 right"), std::string::npos) << gp;
+  EXPECT_NE(gp.find("\"runB, nonpressure\" 5"), std::string::npos) << gp;
+  EXPECT_EQ(gp.find("\\nmean"), std::string::npos) << gp;
 }
 
 TEST(Figures, BadInputNamesTheFileTheColumnAndWhatIsAllowed) {
@@ -125,20 +155,37 @@ TEST(Figures, BadInputNamesTheFileTheColumnAndWhatIsAllowed) {
   try {
     analysis::figure_series(s, {t});
     FAIL() << "a missing column must throw";
-  } catch (const SceneError& e) {
+  } catch (const analysis::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("no column 'iterationz' (it has: time, iterations)"), std::string::npos) << e.what();
   }
   s.y = {"iterations"};
   s.where = {"time=9"};
-  EXPECT_THROW(analysis::figure_series(s, {t}), SceneError);  // no rows match
-  EXPECT_THROW(analysis::figure_format("a.jpg"), SceneError);
+  EXPECT_THROW(analysis::figure_series(s, {t}), analysis::InputError);  // no rows match
+  EXPECT_THROW(analysis::figure_format("a.jpg"), analysis::InputError);
   write_text(dir.work() / "ragged.csv", "a,b\n1,2\n3\n");
   try {
     analysis::read_csv_table((dir.work() / "ragged.csv").string());
     FAIL() << "a short row must throw";
-  } catch (const SceneError& e) {
+  } catch (const analysis::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("line 3: 1 fields, the header has 2"), std::string::npos) << e.what();
   }
+}
+
+// The progress line's ETA (src/app/eta.h): none before a few frames, then the recent
+// frames' pace rather than the pace since the start.
+TEST(Eta, NoEstimateBeforeAFewFramesThenTheRecentPace) {
+  app::EtaEstimate eta(10, 3);
+  eta.add(0, 0);
+  eta.add(17, 0.1);  // the first frame carries 16 s of set-up
+  EXPECT_FALSE(eta.seconds_left(2.0).has_value());
+  eta.add(18, 0.2);
+  eta.add(19, 0.3);
+  EXPECT_FALSE(eta.seconds_left(2.0).has_value());  // three frames: still none
+  for (int k = 4; k <= 14; ++k) eta.add(19 + (k - 3), 0.1 * k);  // then 1 s per 0.1 s
+  ASSERT_TRUE(eta.seconds_left(2.0).has_value());
+  // 0.6 s left at 10 s per simulated second; since the start it would say about 14 s.
+  EXPECT_NEAR(*eta.seconds_left(2.0), 6.0, 1e-9);
+  EXPECT_EQ(*eta.seconds_left(1.0), 0.0);  // past the end
 }
 
 TEST(Figures, MarkdownTableChoosesColumnsAndEscapes) {
@@ -285,15 +332,18 @@ TEST(Experiments, UnknownNameAndBadFiguresInputAreOneLineErrors) {
   EXPECT_NE(r.err.find("figure-99"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("iisph-dt"), std::string::npos) << r.err;  // lists what is allowed
   write_text(dir.work() / "s.csv", "time,iterations\n0,3\n");
+  // A CSV or figure mistake is the input's, not a scene's: exit 1, not "scene error" (2).
   r = run_sluice(dir, {"figures", "series", "s.csv", "--y", "iterations", "-o", "x.jpg"});
-  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find(".png, .svg, .pdf"), std::string::npos) << r.err;
   r = run_sluice(dir, {"figures", "series", "s.csv", "--y", "iters", "-o", "x.png"});
-  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("no column 'iters'"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("scene error"), std::string::npos) << r.err;
   r = run_sluice(dir, {"figures", "run", "nowhere"});
-  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("nowhere/stats.csv"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("scene error"), std::string::npos) << r.err;
 }
 
 TEST(Experiments, FiguresRunDrawsTheStandardFiguresOfARun) {

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "analysis/csv.h"
 #include "analysis/sweep.h"
 #include "test_util.h"
 
@@ -69,8 +70,50 @@ TEST(Sweep, CsvRoundTrip) {
   EXPECT_DOUBLE_EQ(back[0].ms_phase[2], 0.125);
   EXPECT_DOUBLE_EQ(back[1].avg_density_error, 0.1);
   std::ofstream(path) << "not,a,bench,csv\n";
-  EXPECT_THROW(analysis::read_sweep_csv(path.string()), SceneError);
+  EXPECT_THROW(analysis::read_sweep_csv(path.string()), analysis::InputError);
   std::filesystem::remove(path);
+}
+
+TEST(Sweep, CsvHasStepSizesAndLabelsAndReadsOldFiles) {
+  auto r = point(1.5, 0.25);
+  r.set = {"solver.type=iisph", "time.dt_max=0.002"};
+  r.avg_dt = 0.00196;
+  r.min_dt = 0.0015;
+  r.dt_of_max_percent = 98;
+  const auto path = std::filesystem::temp_directory_path() / "sluice_sweep_dt.csv";
+  std::ofstream(path) << analysis::sweep_csv({r});
+  const auto back = analysis::read_sweep_csv(path.string());
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_DOUBLE_EQ(back[0].avg_dt, 0.00196);
+  EXPECT_DOUBLE_EQ(back[0].dt_of_max_percent, 98);
+  EXPECT_EQ(back[0].label(), "iisph, 0.002");
+  // A bench.csv from before these columns is still collected.
+  std::ofstream(path) << "scene,set,solver,particles,threads,stable,message,steps,simulated_s,wall_s,s_per_simulated_s,"
+                         "avg_iterations,avg_density_error_percent,max_density_error_percent,ms_neighbors,"
+                         "ms_nonpressure,ms_pressure,ms_integrate,ms_total,ms_moving_boundaries,pareto\n"
+                         "\"c\",\"solver.type=iisph\",iisph,300,2,1,\"\",10,0.2,0.1,0.5,6,0.07,0.1,1,1,1,1,4,0,1\n";
+  EXPECT_EQ(analysis::read_sweep_csv(path.string()).size(), 1u);
+  std::filesystem::remove(path);
+}
+
+TEST(Sweep, PlotHasNoEmptyLegendEntriesAndLabelsItsPoints) {
+  auto a = point(1, 0.5), b = point(2, 0.1);
+  a.solver = b.solver = "iisph";
+  a.set = {"time.dt_max=0.004"};
+  b.set = {"time.dt_max=0.002"};
+  std::vector<analysis::SweepRun> runs{a, b};
+  analysis::mark_pareto_front(runs);
+  std::string gp = analysis::sweep_plot_script(runs, "column");
+  EXPECT_NE(gp.find("title \"IISPH\""), std::string::npos) << gp;
+  EXPECT_EQ(gp.find("WCSPH"), std::string::npos) << gp;  // no series without points
+  EXPECT_NE(gp.find("\"0.004\""), std::string::npos) << gp;
+  EXPECT_NE(gp.find("with labels"), std::string::npos) << gp;
+  EXPECT_NE(gp.find("Pareto front"), std::string::npos) << gp;
+  runs[1].stable = false;  // one drawable point: no front line, no WCSPH
+  analysis::mark_pareto_front(runs);
+  gp = analysis::sweep_plot_script(runs, "column");
+  EXPECT_EQ(gp.find("Pareto front"), std::string::npos) << gp;
+  EXPECT_EQ(gp.find("0.002"), std::string::npos) << gp;  // unstable runs are not drawn
 }
 
 // Each run starts from the scene's initial state: the same combination gives the same

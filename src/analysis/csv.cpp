@@ -62,7 +62,7 @@ bool CsvTable::has_column(const std::string& name) const {
 int CsvTable::column(const std::string& name) const {
   for (std::size_t i = 0; i < header.size(); ++i)
     if (header[i] == name) return static_cast<int>(i);
-  throw SceneError(path + ": no column '" + name + "' (it has: " + join(header, ", ") + ")");
+  throw InputError(path + ": no column '" + name + "' (it has: " + join(header, ", ") + ")");
 }
 
 std::vector<double> CsvTable::numbers(const std::string& name) const {
@@ -80,17 +80,17 @@ std::vector<double> CsvTable::numbers(const std::string& name) const {
 
 CsvTable read_csv_table(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw SceneError(path + ": cannot open file");
+  if (!in) throw InputError(path + ": cannot open file");
   CsvTable t;
   t.path = path;
   std::string line;
-  if (!std::getline(in, line) || line.empty()) throw SceneError(path + ": line 1: expected a header row of column names");
+  if (!std::getline(in, line) || line.empty()) throw InputError(path + ": line 1: expected a header row of column names");
   t.header = parse_csv_line(line);
   for (long n = 2; std::getline(in, line); ++n) {
     if (line.empty()) continue;
     auto f = parse_csv_line(line);
     if (f.size() != t.header.size())
-      throw SceneError(path + ": line " + std::to_string(n) + ": " + std::to_string(f.size()) + " fields, the header has " +
+      throw InputError(path + ": line " + std::to_string(n) + ": " + std::to_string(f.size()) + " fields, the header has " +
                        std::to_string(t.header.size()));
     t.rows.push_back(std::move(f));
   }

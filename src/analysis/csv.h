@@ -1,10 +1,19 @@
 #pragma once
 // Comma-separated values as sluice writes and reads them: a header row, then one row per
 // record; fields holding commas, quotes or semicolons are quoted ("" for a quote).
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace sluice::analysis {
+
+// A CSV input that cannot be read or lacks what was asked of it (a missing file or
+// column, a ragged row), or a figure request that does not fit its data. Not a scene's
+// fault: the program answers "sluice: error: ..." and exit status 1.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 // Splits at every `sep` (an empty string gives no fields; a trailing sep an empty last one).
 std::vector<std::string> split(const std::string& s, char sep);
@@ -21,14 +30,14 @@ struct CsvTable {
   std::vector<std::string> header;
   std::vector<std::vector<std::string>> rows;
 
-  // Index of a column; throws SceneError naming the file, the column and the columns it has.
+  // Index of a column; throws InputError naming the file, the column and the columns it has.
   int column(const std::string& name) const;
   bool has_column(const std::string& name) const;
   // A column as numbers (NaN for an empty or non-numeric field).
   std::vector<double> numbers(const std::string& name) const;
 };
 
-// Reads a CSV file; throws SceneError naming the file and line (a missing file, no header,
+// Reads a CSV file; throws InputError naming the file and line (a missing file, no header,
 // a row whose field count differs from the header's).
 CsvTable read_csv_table(const std::string& path);
 

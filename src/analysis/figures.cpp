@@ -63,7 +63,7 @@ std::vector<Where> parse_where(const FigureSpec& spec, const CsvTable& t) {
   for (const auto& w : spec.where) {
     const auto eq = w.find('=');
     if (eq == std::string::npos || eq == 0)
-      throw SceneError("--where " + w + ": expected COLUMN=VALUE, e.g. solver=iisph");
+      throw InputError("--where " + w + ": expected COLUMN=VALUE, e.g. solver=iisph");
     out.push_back({t.column(w.substr(0, eq)), w.substr(eq + 1)});
   }
   return out;
@@ -118,9 +118,13 @@ std::string series_plot(const FigureSpec& spec, const std::vector<FigureSeries>&
     s += datablock("s" + std::to_string(i), {f.x, f.y});
     plot += std::string(plot.empty() ? "plot " : ", \\\n     ") + "$s" + std::to_string(i) + " using 1:2 with " + with +
             " lc rgb \"" + color(i) + "\" title " + gnuplot_quote(f.label) + " noenhanced";
-    if (spec.mean)
-      plot += ", \\\n     " + num(f.mean) + " with lines dt 2 lw 2 lc rgb \"" + color(i) + "\" title " +
+    if (spec.mean && !f.x.empty()) {
+      // The mean over the series' own x range: a shorter run's line ends where it ends.
+      const auto [lo, hi] = std::minmax_element(f.x.begin(), f.x.end());
+      s += datablock("m" + std::to_string(i), {{*lo, *hi}, {f.mean, f.mean}});
+      plot += ", \\\n     $m" + std::to_string(i) + " using 1:2 with lines dt 2 lw 2 lc rgb \"" + color(i) + "\" title " +
               gnuplot_quote("mean " + short_num(f.mean, 4)) + " noenhanced";
+    }
   }
   return s + plot + "\n";
 }
@@ -128,6 +132,10 @@ std::string series_plot(const FigureSpec& spec, const std::vector<FigureSeries>&
 std::string box_plot(const std::vector<FigureSeries>& series) {
   std::vector<double> pos, q1, lo, hi, q3, med, mean, out_x, out_y;
   std::string tics;
+  // Beyond five boxes (e.g. `figures run A B`: five phases of two runs) two-line labels
+  // run into each other: one line each, slanted.
+  const bool slanted = series.size() > 5;
+  std::size_t longest = 0;
   for (std::size_t i = 0; i < series.size(); ++i) {
     const BoxStats b = box_stats(series[i].y);
     const double x = static_cast<double>(i + 1);
@@ -138,12 +146,18 @@ std::string box_plot(const std::vector<FigureSeries>& series) {
     // The tic label's second line gives the mean (backslash-n is a newline inside gnuplot's double quotes).
     std::string tic = gnuplot_quote(series[i].label);
     tic.pop_back();
-    tics += std::string(tics.empty() ? "" : ", ") + tic + "\\nmean " + short_num(b.mean, 3) + "\" " + num(x);
+    // Slanted labels leave the mean to its dot (a longer label would leave the image).
+    const std::string mean_text = slanted ? "" : "\\nmean " + short_num(b.mean, 3);
+    tics += std::string(tics.empty() ? "" : ", ") + tic + mean_text + "\" " + num(x);
+    longest = std::max(longest, series[i].label.size() + mean_text.size());
   }
   std::string s = datablock("box", {pos, q1, lo, hi, q3, med, mean});
   if (!out_x.empty()) s += datablock("outliers", {out_x, out_y});
-  s += "set xtics (" + tics + ") noenhanced\nset xrange [0.4:" + num(static_cast<double>(series.size()) + 0.6) + "]\n"
-       "set bmargin 5\nset boxwidth 0.5\nset style fill solid 0.35 border -1\nset key top right\n"
+  // A label slanted by 30 degrees needs about a quarter of its length in character heights below the axis.
+  s += "set xtics (" + tics + ") noenhanced" + (slanted ? " rotate by 30 right" : "") + "\nset xrange [0.4:" +
+       num(static_cast<double>(series.size()) + 0.6) + "]\n" +
+       "set bmargin " + std::to_string(slanted ? 3 + static_cast<int>(longest * 0.25) : 5) + "\n" +
+       "set boxwidth 0.5\nset style fill solid 0.35 border -1\n"
        "plot $box using 1:2:3:4:5 with candlesticks whiskerbars 0.5 lc rgb \"#1f77b4\" title \"quartiles, 1.5 IQR whiskers\", \\\n"
        "     $box using 1:6:6:6:6 with candlesticks lc rgb \"black\" lw 2 notitle, \\\n"
        "     $box using 1:7 with points pt 7 ps 1.6 lc rgb \"black\" title \"mean\"";
@@ -196,7 +210,7 @@ FigureFormat figure_format(const std::string& output) {
   if (ext == ".png") return FigureFormat::Png;
   if (ext == ".svg") return FigureFormat::Svg;
   if (ext == ".pdf") return FigureFormat::Pdf;
-  throw SceneError("-o " + output + ": the figure's format comes from its extension; allowed: .png, .svg, .pdf");
+  throw InputError("-o " + output + ": the figure's format comes from its extension; allowed: .png, .svg, .pdf");
 }
 
 BoxStats box_stats(std::vector<double> v) {
@@ -291,9 +305,9 @@ std::string axis_label(const std::string& c) {
 }
 
 std::vector<FigureSeries> figure_series(const FigureSpec& spec, const std::vector<CsvTable>& tables) {
-  if (spec.y.empty()) throw SceneError("--y: missing; name the column(s) to plot, e.g. --y iterations");
+  if (spec.y.empty()) throw InputError("--y: missing; name the column(s) to plot, e.g. --y iterations");
   if (!spec.labels.empty() && spec.labels.size() != spec.inputs.size())
-    throw SceneError("--label: " + std::to_string(spec.labels.size()) + " given for " + std::to_string(spec.inputs.size()) +
+    throw InputError("--label: " + std::to_string(spec.labels.size()) + " given for " + std::to_string(spec.inputs.size()) +
                      " inputs; give one per input or none");
   std::vector<FigureSeries> out;
   for (std::size_t i = 0; i < tables.size(); ++i) {
@@ -319,7 +333,7 @@ std::vector<FigureSeries> figure_series(const FigureSpec& spec, const std::vecto
         if (std::find(groups.begin(), groups.end(), g) == groups.end()) groups.push_back(g);
       }
     if (groups.empty())
-      throw SceneError(t.path + ": no rows" + (spec.where.empty() ? "" : " match --where " + join(spec.where, " --where ")));
+      throw InputError(t.path + ": no rows" + (spec.where.empty() ? "" : " match --where " + join(spec.where, " --where ")));
     for (const auto& g : groups)
       for (std::size_t k = 0; k < yc.size(); ++k) {
         FigureSeries f;
@@ -365,18 +379,9 @@ std::string figure_script(const FigureSpec& spec, const std::vector<FigureSeries
   if (!yl.empty()) s += "set ylabel " + gnuplot_quote(yl) + " noenhanced\n";
   if (spec.logx) s += "set logscale x\n";
   if (spec.logy) s += "set logscale y\n";
-  // Many legend entries would cover the data: put the key beside the plot. A few long
-  // ones span the plot's width: leave room above the data for them (the key's height,
-  // about 0.055 of the plot per entry plus its frame, as a share of the data's range).
-  std::size_t longest = 0;
-  for (const FigureSeries& f : series) longest = std::max(longest, f.label.size());
-  const std::size_t entries = series.size() * (spec.mean ? 2 : 1);
-  if (spec.kind != FigureKind::Box && entries > 4) {
-    s += "set key outside right top\n";
-  } else if (spec.kind != FigureKind::Box && entries > 1 && longest > 32) {
-    const double key = 0.055 * static_cast<double>(entries) + 0.04;
-    s += "set offsets 0, 0, graph " + num(key / (1.0 - key)) + ", 0\n";
-  }
+  // The legend above the plot, in rows: inside it covered the data where runs start
+  // (the spikes at t = 0) or a box's outliers; beside it, it took a third of the width.
+  s += "set key outside top center horizontal box opaque\n";
   switch (spec.kind) {
     case FigureKind::Series: return s + series_plot(spec, series);
     case FigureKind::Box: return s + box_plot(series);
@@ -387,18 +392,18 @@ std::string figure_script(const FigureSpec& spec, const std::vector<FigureSeries
 
 std::string make_figure(const FigureSpec& spec) {
   figure_format(spec.output);  // a bad extension fails before any work
-  if (spec.inputs.empty()) throw SceneError("figures: no input CSV files");
+  if (spec.inputs.empty()) throw InputError("figures: no input CSV files");
   if (spec.style != "lines" && spec.style != "linespoints" && spec.style != "points")
-    throw SceneError("--style " + spec.style + ": allowed: lines, linespoints, points");
+    throw InputError("--style " + spec.style + ": allowed: lines, linespoints, points");
   if (spec.width < 100 || spec.height < 100 || spec.width > 10000 || spec.height > 10000)
-    throw SceneError("--size " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+    throw InputError("--size " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                      ": each side must be 100 to 10000 pixels");
   std::vector<CsvTable> tables;
   for (const auto& in : spec.inputs) tables.push_back(read_csv_table(in));
   const auto series = figure_series(spec, tables);
   for (const auto& f : series)
     if (f.y.empty())
-      throw SceneError("figures: the series '" + f.label + "' has no plottable rows (all NaN" +
+      throw InputError("figures: the series '" + f.label + "' has no plottable rows (all NaN" +
                        std::string(spec.logx || spec.logy ? ", or not positive on a log axis" : "") + ")");
   const fs::path out(spec.output);
   if (out.has_parent_path()) fs::create_directories(out.parent_path());

@@ -42,11 +42,18 @@ std::string run_gnuplot(const std::string& script_path, const std::string& scrip
     for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return q + "'";
   };
-  const std::string cmd = "cd " + sh(p.parent_path().string()) + " && gnuplot " + sh(p.filename().string()) + " 2>&1";
+  // gnuplot's messages (warnings included) go to FILE.log beside the script: a warning
+  // on the terminal looked like a failure; the log says what it was.
+  fs::path log = p;
+  log.replace_extension(".log");
+  const std::string cmd = "cd " + sh(p.parent_path().string()) + " && gnuplot " + sh(p.filename().string()) + " >" +
+                          sh(log.string()) + " 2>&1";
   const int status = std::system(cmd.c_str());
   if (status != 0)
     return "gnuplot failed (status " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : status) +
-           "); rerun by hand: gnuplot " + p.string();
+           "; its messages are in " + log.string() + "); rerun by hand: gnuplot " + p.string();
+  std::error_code ec;
+  if (fs::file_size(log, ec) == 0 && !ec) fs::remove(log, ec);  // nothing to say: no file
   return "";
 }
 

@@ -2,7 +2,10 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -16,9 +19,20 @@ namespace {
 const char* kHeader =
     "scene,set,solver,particles,threads,stable,message,steps,simulated_s,wall_s,s_per_simulated_s,avg_iterations,"
     "avg_density_error_percent,max_density_error_percent,ms_neighbors,ms_nonpressure,ms_pressure,ms_integrate,"
+    "ms_total,ms_moving_boundaries,pareto,avg_dt_s,min_dt_s,avg_dt_of_dt_max_percent,label";
+// The header before the step-size and label columns: such files are still read (--collect).
+const char* kHeader21 =
+    "scene,set,solver,particles,threads,stable,message,steps,simulated_s,wall_s,s_per_simulated_s,avg_iterations,"
+    "avg_density_error_percent,max_density_error_percent,ms_neighbors,ms_nonpressure,ms_pressure,ms_integrate,"
     "ms_total,ms_moving_boundaries,pareto";
 
 }  // namespace
+
+std::string SweepRun::label() const {
+  std::vector<std::string> values;
+  for (const std::string& kv : set) values.push_back(kv.substr(kv.find('=') + 1));
+  return join(values, ", ");
+}
 
 SweepAxis parse_sweep(const std::string& text) {
   const auto eq = text.find('=');
@@ -55,7 +69,9 @@ SweepRun run_sweep_point(const Scene& scene, const std::vector<std::string>& set
   r.solver = to_string(scene.solver.type);
   r.particles = static_cast<long>(scene.fluid_x.size());
   r.threads = omp_get_max_threads();
-  double iterations = 0, error = 0;
+  double iterations = 0, error = 0, dt_sum = 0;
+  const double dt_max = scene.time.dt > 0 ? scene.time.dt : scene.time.dt_max;
+  r.min_dt = HUGE_VAL;
   const auto t0 = std::chrono::steady_clock::now();
   Simulation sim(scene);
   sim.set_brute_force_neighbors(brute_force);
@@ -66,6 +82,8 @@ SweepRun run_sweep_point(const Scene& scene, const std::vector<std::string>& set
       ++r.steps;
       iterations += st.iterations;
       error += st.density_error_percent;
+      dt_sum += st.dt;
+      r.min_dt = std::min(r.min_dt, st.dt);
       r.max_density_error = std::max(r.max_density_error, st.density_error_percent);
       const double ms[6] = {st.ms_neighbors, st.ms_nonpressure, st.ms_pressure, st.ms_integrate, st.ms_total, st.ms_boundary};
       for (int k = 0; k < 6; ++k) r.ms_phase[k] += ms[k];
@@ -80,6 +98,9 @@ SweepRun run_sweep_point(const Scene& scene, const std::vector<std::string>& set
   r.avg_iterations = iterations / ns;
   r.avg_density_error = error / ns;
   for (double& ms : r.ms_phase) ms /= ns;
+  r.avg_dt = dt_sum / ns;
+  if (r.steps == 0) r.min_dt = 0;
+  r.dt_of_max_percent = dt_max > 0 ? 100.0 * r.avg_dt / dt_max : 0;
   return r;
 }
 
@@ -107,23 +128,29 @@ std::string sweep_csv(const std::vector<SweepRun>& runs) {
                   r.simulated, r.wall_seconds, r.seconds_per_simulated_second(), r.avg_iterations, r.avg_density_error,
                   r.max_density_error, r.ms_phase[0], r.ms_phase[1], r.ms_phase[2], r.ms_phase[3], r.ms_phase[4],
                   r.ms_phase[5], r.pareto ? 1 : 0);
+    char dts[128];
+    std::snprintf(dts, sizeof dts, "%.6g,%.6g,%.2f", r.avg_dt, r.min_dt, r.dt_of_max_percent);
     text += csv_quote(r.scene) + "," + csv_quote(join(r.set, ";")) + "," + r.solver + "," + std::to_string(r.particles) + "," +
-            std::to_string(r.threads) + "," + (r.stable ? "1" : "0") + "," + csv_quote(r.message) + "," + nums + "\n";
+            std::to_string(r.threads) + "," + (r.stable ? "1" : "0") + "," + csv_quote(r.message) + "," + nums + "," + dts +
+            "," + csv_quote(r.label()) + "\n";
   }
   return text;
 }
 
 std::vector<SweepRun> read_sweep_csv(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw SceneError(path + ": cannot open file");
+  if (!in) throw InputError(path + ": cannot open file");
   std::string line;
-  if (!std::getline(in, line) || line != kHeader)
-    throw SceneError(path + ": line 1: not a sluice bench CSV (expected the header " + std::string(kHeader) + ")");
+  if (!std::getline(in, line) || (line != kHeader && line != kHeader21))
+    throw InputError(path + ": line 1: not a sluice bench CSV (expected the header " + std::string(kHeader) + ")");
+  const std::size_t fields = line == kHeader ? 25 : 21;
   std::vector<SweepRun> runs;
   for (long n = 2; std::getline(in, line); ++n) {
     if (line.empty()) continue;
     const auto f = parse_csv_line(line);
-    if (f.size() != 21) throw SceneError(path + ": line " + std::to_string(n) + ": expected 21 fields, found " + std::to_string(f.size()));
+    if (f.size() != fields)
+      throw InputError(path + ": line " + std::to_string(n) + ": expected " + std::to_string(fields) + " fields, found " +
+                       std::to_string(f.size()));
     try {
       SweepRun r;
       r.scene = f[0];
@@ -140,26 +167,82 @@ std::vector<SweepRun> read_sweep_csv(const std::string& path) {
       r.avg_density_error = std::stod(f[12]);
       r.max_density_error = std::stod(f[13]);
       for (int k = 0; k < 6; ++k) r.ms_phase[k] = std::stod(f[14 + k]);
+      if (fields == 25) {
+        r.avg_dt = std::stod(f[21]);
+        r.min_dt = std::stod(f[22]);
+        r.dt_of_max_percent = std::stod(f[23]);
+      }
       runs.push_back(r);
     } catch (const std::logic_error&) {
-      throw SceneError(path + ": line " + std::to_string(n) + ": a field that should be a number is not");
+      throw InputError(path + ": line " + std::to_string(n) + ": a field that should be a number is not");
     }
   }
   return runs;
 }
 
+std::string sweep_plot_script(const std::vector<SweepRun>& runs, const std::string& title) {
+  struct Solver {
+    const char* name;
+    const char* title;
+    const char* style;
+  };
+  // IISPH blue, WCSPH red, as in every figure of the project.
+  const Solver solvers[] = {{"iisph", "IISPH", "pt 7 ps 1.6 lc rgb \"#1f77b4\""},
+                            {"wcsph", "WCSPH", "pt 5 ps 1.6 lc rgb \"#d62728\""}};
+  auto drawable = [](const SweepRun& r) {
+    return r.stable && r.seconds_per_simulated_second() > 0 && r.avg_density_error > 0;
+  };
+  auto point = [](const SweepRun& r) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%.6g %.6g ", r.seconds_per_simulated_second(), r.avg_density_error);
+    std::string label = r.label();
+    for (char& c : label) c = c == '"' ? '\'' : c;
+    return buf + std::string("\"") + label + "\"\n";
+  };
+  std::string data, plot;
+  auto add = [&](const std::string& part) { plot += (plot.empty() ? "plot " : ", \\\n     ") + part; };
+  for (const Solver& sv : solvers) {
+    std::string block;
+    for (const SweepRun& r : runs)
+      if (r.solver == sv.name && drawable(r)) block += point(r);
+    if (block.empty()) continue;
+    data += "$" + std::string(sv.name) + " << EOD\n" + block + "EOD\n";
+    add("$" + std::string(sv.name) + " using 1:2 with points " + sv.style + " title \"" + sv.title + "\"");
+    add("$" + std::string(sv.name) + " using 1:2:3 with labels offset char 0.8,0.8 left font \",13\" noenhanced notitle");
+  }
+  std::vector<const SweepRun*> front;
+  for (const SweepRun& r : runs)
+    if (r.pareto && drawable(r)) front.push_back(&r);
+  std::sort(front.begin(), front.end(), [](const SweepRun* a, const SweepRun* b) {
+    return a->seconds_per_simulated_second() < b->seconds_per_simulated_second();
+  });
+  if (front.size() > 1) {
+    data += "$pareto << EOD\n";
+    for (const SweepRun* r : front) data += point(*r);
+    data += "EOD\n";
+    add("$pareto using 1:2 with lines lc rgb \"black\" dt 2 title \"Pareto front\"");
+  }
+  if (plot.empty()) plot = "set label 1 \"no stable run to draw\" at graph 0.5, 0.5 center\nplot NaN notitle";
+  // Inline rows are space-separated with quoted labels (the preamble reads CSV).
+  return "set datafile separator whitespace\n" + data + "set title \"" + title + "\" noenhanced\n" +
+         "set logscale xy\nset xlabel \"wall time per simulated second [s]\"\n"
+         "set ylabel \"average density error [%]\"\nset key outside top center horizontal box opaque\n"
+         "set offsets graph 0.05, graph 0.15, graph 0.1, graph 0.05\n" + plot + "\n";
+}
+
 std::string sweep_markdown(const std::vector<SweepRun>& runs) {
   std::string md =
-      "| run | overrides | solver | particles | stable | s / sim s | steps | iterations | avg err % | max err % | "
-      "neighb ms | nonpres ms | pressure ms | integr ms | Pareto |\n"
-      "|---:|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
+      "| run | overrides | solver | particles | stable | s / sim s | steps | avg dt [s] | % of dt_max | iterations | "
+      "avg err % | max err % | neighb ms | nonpres ms | pressure ms | integr ms | Pareto |\n"
+      "|---:|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const SweepRun& r = runs[i];
     char line[640];
-    std::snprintf(line, sizeof line, "| %zu | `%s` | %s | %ld | %s | %.3f | %ld | %.2f | %.4f | %.4f | %.3f | %.3f | %.3f | %.3f | %s |\n",
+    std::snprintf(line, sizeof line,
+                  "| %zu | `%s` | %s | %ld | %s | %.3f | %ld | %.3g | %.0f | %.2f | %.4f | %.4f | %.3f | %.3f | %.3f | %.3f | %s |\n",
                   i + 1, join(r.set, " ").c_str(), r.solver.c_str(), r.particles,
                   r.stable ? "yes" : ("no, t = " + std::to_string(r.simulated)).c_str(), r.seconds_per_simulated_second(),
-                  r.steps, r.avg_iterations, r.avg_density_error, r.max_density_error, r.ms_phase[0], r.ms_phase[1],
+                  r.steps, r.avg_dt, r.dt_of_max_percent, r.avg_iterations, r.avg_density_error, r.max_density_error, r.ms_phase[0], r.ms_phase[1],
                   r.ms_phase[2], r.ms_phase[3], r.pareto ? "**yes**" : "");
     md += line;
   }

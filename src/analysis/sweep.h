@@ -39,6 +39,14 @@ struct SweepRun {
   double max_density_error = 0;       // its largest per-step value [%]
   double ms_phase[6] = {0, 0, 0, 0, 0, 0};  // per step: neighbours, non-pressure, pressure, integration, total, moving
   bool pareto = false;
+  double avg_dt = 0, min_dt = 0;      // step sizes [s]
+  // The average step as a share of time.dt_max (or of a fixed time.dt) [%]: near 100,
+  // dt_max bound the step rather than the CFL or acoustic limit (steps evened out to
+  // land on frame times keep it a little below 100).
+  double dt_of_max_percent = 0;
+
+  // The combination's values, for the figure's point labels: "iisph, 0.002".
+  std::string label() const;
 
   // Wall seconds per simulated second: the cost a user pays for one second of animation.
   double seconds_per_simulated_second() const { return simulated > 0 ? wall_seconds / simulated : 0; }
@@ -55,6 +63,12 @@ SweepRun run_sweep_point(const Scene& scene, const std::vector<std::string>& set
 // the stable runs: a run is on it when no other stable run is at least as good in both
 // and better in one.
 void mark_pareto_front(std::vector<SweepRun>& runs);
+
+// The gnuplot script of bench.png: seconds per simulated second against the average
+// density error, log-log, one series per solver that ran (no empty legend entries),
+// each point labelled with its values, the Pareto front when there is one. The data is
+// inline; stable runs with both values positive (a log axis) are drawn.
+std::string sweep_plot_script(const std::vector<SweepRun>& runs, const std::string& title);
 
 // CSV with a header row; read_sweep_csv reads what write_sweep_csv writes (for --collect).
 std::string sweep_csv(const std::vector<SweepRun>& runs);

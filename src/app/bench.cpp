@@ -79,25 +79,13 @@ void print_sweep_row(std::size_t i, const analysis::SweepRun& r) {
   std::fflush(stdout);
 }
 
-// Time per simulated second against average density error, log-log, one colour per
-// solver, the Pareto front as a line.
-std::string sweep_plot_script(const std::string& title) {
-  return "set datafile missing \"NaN\"\n" + analysis::gnuplot_png_preamble("bench.png") +
-         "set title " + analysis::gnuplot_quote(title) + " noenhanced\n"
-         "set logscale xy\nset xlabel \"wall time per simulated second [s]\"\n"
-         "set ylabel \"average density error [%]\"\nset key bottom left\n"
-         "iisph(s, v) = (strcol(3) eq \"iisph\" && s == 1) ? v : NaN\n"
-         "wcsph(s, v) = (strcol(3) eq \"wcsph\" && s == 1) ? v : NaN\n"
-         "plot \"bench.csv\" using 11:(iisph($6, $13)) skip 1 with points pt 7 ps 1.6 lc rgb \"#1f77b4\" title \"IISPH\", \\\n"
-         "     \"bench.csv\" using 11:(wcsph($6, $13)) skip 1 with points pt 5 ps 1.6 lc rgb \"#d62728\" title \"WCSPH\", \\\n"
-         "     \"< awk -F, 'NR > 1 && $NF == 1' bench.csv | sort -t, -k11 -g\" using 11:13 with lines lc rgb \"black\" dt 2 title \"Pareto front\"\n";
-}
-
 void write_sweep_outputs(std::vector<analysis::SweepRun>& runs, const fs::path& dir, const std::string& title) {
   analysis::mark_pareto_front(runs);
   write_file_atomic((dir / "bench.csv").string(), analysis::sweep_csv(runs));
   write_file_atomic((dir / "bench.md").string(), analysis::sweep_markdown(runs));
-  const std::string why = analysis::run_gnuplot((dir / "bench.gp").string(), sweep_plot_script(title));
+  const std::string why = analysis::run_gnuplot((dir / "bench.gp").string(),
+                                                analysis::gnuplot_png_preamble("bench.png") +
+                                                    analysis::sweep_plot_script(runs, title));
   if (!why.empty()) std::fprintf(stderr, "sluice: warning: no plot: %s (bench.csv and bench.md are written)\n", why.c_str());
   std::printf("wrote %s, bench.md%s\n", (dir / "bench.csv").string().c_str(), why.empty() ? ", bench.png" : "");
 }

@@ -49,6 +49,9 @@ struct RenderOptions {
   std::string frames;      // "A:B": render only frames A..B (the run stops at B)
   ImageOptions image;
   bool no_video = false;
+  std::string format = "mp4";    // video container: mp4 | webm | gif
+  int crf = -1;                  // video quality (< 0: the format's default)
+  std::string frame_pattern = "frame_%05d.png";  // the PNG frames' names (printf, one %d)
   int threads = 0;
   std::vector<std::string> set;
   bool quiet = false;
@@ -128,6 +131,7 @@ struct MontageOptions {
   std::string colormap;    // empty: the scene's render.colormap
   std::string range;       // "lo:hi" or "auto"; empty: the scene's render range
   std::string title;
+  std::string overlay = "time";  // each cell's band: full | time | none
   std::string output;      // empty: <output directory>/montage.png
   int threads = 0;
 };

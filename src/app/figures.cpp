@@ -62,7 +62,7 @@ int run_standard_figures(const FiguresOptions& o) {
   for (const auto& dir : o.inputs) {
     const fs::path stats = fs::path(dir) / "stats.csv";
     if (!fs::is_regular_file(stats))
-      throw SceneError(stats.string() + ": not found; `figures run` takes run directories written by simulate or render");
+      throw analysis::InputError(stats.string() + ": not found; `figures run` takes run directories written by simulate or render");
     base.inputs.push_back(stats.string());
   }
   const fs::path out = o.output.empty() ? fs::path(o.inputs[0]) / "figures" : fs::path(o.output);

@@ -123,7 +123,15 @@ int main(int argc, char** argv) {
     cmd->add_option("--colormap", io.colormap, "spectrum (blue to red), viridis, turbo (default: render.colormap, spectrum)")
         ->check(CLI::IsMember({"spectrum", "viridis", "turbo"}));
     cmd->add_option("--range", io.range, "Colour range lo:hi, or auto (fixed for the run from the scene: cfl 0:1, speed 0:sqrt(2 g H), pressure 0:rho0 g H, density_error 0:1; default: render.range)");
-    cmd->add_flag("--no-overlay", io.no_overlay, "No time/frame/step/iterations line");
+    cmd->add_option("--overlay", io.overlay, "Overlay line above the scene: full (time, frame, step, iterations; default), time, none")
+        ->check(CLI::IsMember({"full", "time", "none"}));
+    cmd->add_flag("--no-overlay", io.no_overlay, "The same as --overlay none");
+    cmd->add_option("--title", io.title, "Title line above the scene (UTF-8)");
+    cmd->add_option("--particle-scale", io.particle_scale, "Disc diameter as a multiple of the particle spacing (default 1; > 0, <= 10)")
+        ->check(number_check(false, 0, true, 10));
+    cmd->add_option("--background", io.background, "Background colour: #rrggbb or a name (white, black, grey, ...; default white)");
+    cmd->add_option("--object-color", io.object_colors, "Colour of a boundary object: NAME=COLOUR (repeatable; default grey walls, slate moving objects)")
+        ->take_all();
     cmd->add_flag("--no-colorbar", io.no_colorbar, "No colorbar");
     cmd->add_option("--msaa", io.msaa, "Multisampling: 0 (default) or 4")->check(CLI::IsMember({0, 4}));
     cmd->add_option("--egl", io.egl, "EGL platform: auto (default: surfaceless, then device), surfaceless, device")
@@ -131,14 +139,18 @@ int main(int argc, char** argv) {
   };
 
   RenderOptions ren;
-  CLI::App* render = app.add_subcommand("render", "Simulate a scene and render PNG frames and an MP4 video");
+  CLI::App* render = app.add_subcommand("render", "Simulate a scene and render PNG frames and a video (MP4, WebM or GIF)");
   render->add_option("scene", ren.scene, "Scene file (JSON); with --resume, the recorded one by default");
   render->add_option("-o,--output", ren.output_dir, "Output directory (default: the scene's output.directory)");
   render->add_option("--fps", ren.fps, "Frames per second (overrides time.fps)")->check(positive);
   render->add_option("--duration", ren.duration, "Simulated seconds (overrides time.duration)")->check(positive);
   render->add_option("--frames", ren.frames, "Render only frames A:B (the run stops at frame B)");
   add_image_options(render, ren.image);
-  render->add_flag("--no-video", ren.no_video, "PNG frames only, no MP4");
+  render->add_flag("--no-video", ren.no_video, "PNG frames only, no video");
+  render->add_option("--format", ren.format, "Video container: mp4 (H.264, default), webm (VP9), gif");
+  render->add_option("--crf", ren.crf, "Video quality, lower is better: mp4 0-51 (default 18), webm 0-63 (default 31)")
+      ->check(number_check(true, 0, false, 63));
+  render->add_option("--frame-pattern", ren.frame_pattern, "Names of the PNG frames, one %d or %0Nd (default frame_%05d.png)");
   render->add_option("--threads", ren.threads, "OpenMP threads (default: all cores)")->check(threads);
   render->add_option("--set", ren.set, "Override a scene value: path=value")->take_all();
   render->add_flag("-q,--quiet", ren.quiet, "No progress output");
@@ -170,6 +182,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"spectrum", "viridis", "turbo"}));
   montagecmd->add_option("--range", mont.range, "Colour range lo:hi or auto, shared by all cells (default: render.range)");
   montagecmd->add_option("--title", mont.title, "Title line above the grid");
+  montagecmd->add_option("--overlay", mont.overlay, "Each cell's label band: time (default), full (also frame, step, iterations), none")
+      ->check(CLI::IsMember({"full", "time", "none"}));
   montagecmd->add_option("-o,--output", mont.output, "PNG file (default: <output directory>/montage.png)");
   montagecmd->add_option("--threads", mont.threads, "OpenMP threads")->check(threads);
 

@@ -161,7 +161,7 @@ fs::path output_path(const MontageOptions& o, const Scene& scene) {
 
 // One fresh run of `scene`, a cell at each time, appended to `cells`.
 void render_variant(const Scene& scene, const ImageConfig& config, const std::vector<double>& times,
-                    const std::string& variant_label, std::vector<MontageCell>& cells) {
+                    const std::string& variant_label, Overlay overlay, std::vector<MontageCell>& cells) {
   FrameRenderer renderer(config.frame);  // before the run: EGL problems show at once
   Simulation sim(scene);
   FrameBuilder builder(config, sim);
@@ -177,7 +177,10 @@ void render_variant(const Scene& scene, const ImageConfig& config, const std::ve
                              number_text(t) + " s");
     MontageCell cell;
     renderer.render(builder.build(sim, sim.frame(), stepped ? &st : nullptr), cell.image);
-    cell.labels.push_back(time_label(t));
+    if (overlay != Overlay::none) cell.labels.push_back(time_label(t));
+    if (overlay == Overlay::full)
+      cell.labels.push_back("frame " + std::to_string(sim.frame()) + "   step " + std::to_string(sim.steps()) +
+                            "   iterations " + std::to_string(stepped ? st.iterations : 0));
     if (!variant_label.empty()) cell.labels.push_back(variant_label);
     cells.push_back(std::move(cell));
   }
@@ -190,6 +193,7 @@ int run_montage(const MontageOptions& o) {
   if (o.cols < 0) throw FlagError("--cols", std::to_string(o.cols), "expected an integer >= 1");
   const std::vector<double> times = parse_times(o.times);
   const Variation vary = parse_vary(o.vary);
+  const Overlay overlay = parse_overlay(o.overlay);
   int cell_w = 0, cell_h = 0;
   parse_resolution(o.cell, cell_w, cell_h, "--cell");
 
@@ -231,7 +235,7 @@ int run_montage(const MontageOptions& o) {
     std::fprintf(stderr, "sluice: montage run %zu of %zu%s%s: %zu fluid particles to t = %g s\n", v + 1, count,
                  label.empty() ? "" : ", ", label.c_str(), scenes[v].fluid_x.size(), times.back());
     try {
-      render_variant(scenes[v], config, times, label, cells);
+      render_variant(scenes[v], config, times, label, overlay, cells);
     } catch (const SimulationUnstable& e) {
       throw SimulationUnstable(std::string(e.what()) + " (montage run " + std::to_string(v + 1) +
                                (label.empty() ? "" : ", " + label) + "); no montage written");

@@ -33,9 +33,26 @@ using namespace sluice::view;
 
 namespace {
 
-std::string frame_file(Index frame) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "frame_%05d.png", frame);
+// The frame names of --frame-pattern: one integer conversion (%d or %0Nd, N <= 9), a
+// .png name without a folder; ffmpeg reads the same pattern back. Throws FlagError.
+void check_frame_pattern(const std::string& p) {
+  const char* allowed = "expected a PNG file name with one %d or %0Nd (N <= 9) for the frame number, e.g. frame_%05d.png";
+  const size_t pct = p.find('%');
+  if (pct == std::string::npos || p.find('/') != std::string::npos || !p.ends_with(".png"))
+    throw FlagError("--frame-pattern", p, allowed);
+  size_t k = pct + 1;
+  if (k < p.size() && p[k] == '0') {
+    ++k;
+    if (k < p.size() && p[k] >= '1' && p[k] <= '9') ++k;
+    else throw FlagError("--frame-pattern", p, allowed);
+  }
+  if (k >= p.size() || p[k] != 'd' || p.find('%', k) != std::string::npos)
+    throw FlagError("--frame-pattern", p, allowed);
+}
+
+std::string frame_file(const std::string& pattern, Index frame) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, pattern.c_str(), frame);  // checked by check_frame_pattern
   return buf;
 }
 
@@ -54,6 +71,18 @@ std::string read_text_file(const fs::path& p) {
 void check_png_path(const fs::path& out) {
   std::error_code ec;
   if (fs::is_directory(out, ec)) throw OutputError(out.string() + ": is a directory; -o takes the PNG file to write");
+}
+
+// --format and --crf: the container and the encoder's quality, checked before the run.
+VideoFormat video_format(const RenderOptions& o) {
+  VideoFormat f = VideoFormat::mp4;
+  if (!parse_video_format(o.format, f)) throw FlagError("--format", o.format, "allowed: mp4, webm, gif");
+  if (o.crf >= 0 && max_crf(f) < 0)
+    throw FlagError("--crf", std::to_string(o.crf), "GIF has no CRF; --crf applies to --format mp4 and webm");
+  if (o.crf > max_crf(f))
+    throw FlagError("--crf", std::to_string(o.crf),
+                    std::string("allowed for ") + extension(f) + ": 0 (best) to " + std::to_string(max_crf(f)));
+  return f;
 }
 
 // PNG encoding of frame k overlaps the simulation of frame k + 1 (one write in flight).
@@ -135,8 +164,12 @@ int run_render(const RenderOptions& given) {
     }
   }
   const ImageConfig config = resolve_image(o.image, scene);
-  if (!o.no_video && (config.frame.width % 2 != 0 || config.frame.height % 2 != 0))
-    throw FlagError("--resolution", o.image.resolution, "H.264 (yuv420p) needs even width and height; or pass --no-video");
+  const VideoFormat format = video_format(o);
+  check_frame_pattern(o.frame_pattern);
+  if (!o.no_video && format != VideoFormat::gif && (config.frame.width % 2 != 0 || config.frame.height % 2 != 0))
+    throw FlagError("--resolution", o.image.resolution,
+                    std::string(format == VideoFormat::mp4 ? "H.264" : "VP9") +
+                        " (yuv420p) needs even width and height; or pass --no-video or --format gif");
   const fs::path dir = o.output_dir.empty() ? fs::path(scene.output.directory) : fs::path(o.output_dir);
   const fs::path frames_dir = dir / "frames";
   // A resumed run continues the run in `dir`; a fresh one must not mix with an old one.
@@ -157,7 +190,7 @@ int run_render(const RenderOptions& given) {
     const auto t0 = std::chrono::steady_clock::now();
     if (!builder) builder = std::make_unique<FrameBuilder>(config, sim);
     renderer.render(builder->build(sim, frame, st), image);
-    writer.write((frames_dir / frame_file(frame)).string(), image);
+    writer.write((frames_dir / frame_file(o.frame_pattern, frame)).string(), image);
     ms_render += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     ++rendered;
   };
@@ -175,10 +208,12 @@ int run_render(const RenderOptions& given) {
   if (o.no_video || rendered == 0) return 0;
 
   VideoJob job;
-  job.frames_pattern = (frames_dir / "frame_%05d.png").string();
+  job.frames_pattern = (frames_dir / o.frame_pattern).string();
   job.start_number = first;
   job.fps = scene.time.fps;
-  job.output = (dir / (scene.name + ".mp4")).string();
+  job.format = format;
+  job.crf = o.crf;
+  job.output = (dir / (scene.name + "." + extension(format))).string();
   job.log = (dir / "ffmpeg.log").string();
   job.cancelled = [] { return interrupt_signal() != 0; };
   try {
@@ -290,7 +325,7 @@ int run_bench_render(const BenchRenderOptions& o) {
       d.fluid_xy = xy;
       d.fluid_value = val;
       d.diameter = h;
-      d.overlay = "T = 1.000 S   FRAME 30   STEP 1000   ITER 5";
+      d.overlay = overlay_text(Overlay::full, 1.0, 30, 1000, 5);
       std::vector<double> draw, read, annotate, png;
       size_t bytes = 0;
       Image img;

@@ -71,10 +71,18 @@ json run_record(const RenderOptions& o) {
             {"colormap", i.colormap},
             {"range", i.range},
             {"no_overlay", i.no_overlay},
+            {"overlay", i.overlay},
+            {"title", i.title},
+            {"particle_scale", i.particle_scale},
+            {"background", i.background},
+            {"object_colors", i.object_colors},
             {"no_colorbar", i.no_colorbar},
             {"msaa", i.msaa},
             {"egl", i.egl}}},
           {"no_video", o.no_video},
+          {"format", o.format},
+          {"crf", o.crf},
+          {"frame_pattern", o.frame_pattern},
           {"set", o.set},
           {"checkpoint_every", o.checkpoint_every}};
 }
@@ -108,10 +116,19 @@ RenderOptions resumed_options(const RenderOptions& given) {
     o.image.colormap = i.at("colormap").get<std::string>();
     o.image.range = i.at("range").get<std::string>();
     o.image.no_overlay = i.at("no_overlay").get<bool>();
+    // Added later: records of older runs lack them and take the defaults.
+    o.image.overlay = i.value("overlay", std::string());
+    o.image.title = i.value("title", std::string());
+    o.image.particle_scale = i.value("particle_scale", 1.0);
+    o.image.background = i.value("background", std::string());
+    o.image.object_colors = i.value("object_colors", std::vector<std::string>());
     o.image.no_colorbar = i.at("no_colorbar").get<bool>();
     o.image.msaa = i.at("msaa").get<int>();
     o.image.egl = i.at("egl").get<std::string>();
     o.no_video = r.at("no_video").get<bool>();
+    o.format = r.value("format", std::string("mp4"));
+    o.crf = r.value("crf", -1);
+    o.frame_pattern = r.value("frame_pattern", std::string("frame_%05d.png"));
     o.set = r.at("set").get<std::vector<std::string>>();
     if (o.checkpoint_every <= 0) o.checkpoint_every = r.at("checkpoint_every").get<int>();
   });

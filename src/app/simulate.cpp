@@ -11,6 +11,7 @@
 
 #include "app/commands.h"
 #include "app/interrupt.h"
+#include "app/eta.h"
 #include "app/output_dir.h"
 #include "app/resume.h"
 #include "app/run.h"
@@ -45,7 +46,10 @@ std::string frame_name(Index frame, const char* ext) {
   return buf;
 }
 
-std::string clock_string(double seconds) {
+// "0:01:23", or "--:--" while there is no estimate yet.
+std::string clock_string(std::optional<double> left) {
+  if (!left) return "--:--";
+  const double seconds = *left;
   char buf[32];
   const long s = static_cast<long>(seconds + 0.5);
   std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
@@ -242,9 +246,11 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     throw Interrupted(signal, message);
   };
 
+  EtaEstimate eta_estimate;
   try {
     on_frame(sim, sim.frame(), resumed);
     ++frames_done;
+    eta_estimate.add(elapsed(), sim.time());
     while (!sim.finished()) {
       stop_if_interrupted();
       const StepStats st = sim.step();
@@ -256,7 +262,8 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
       csv.flush();
       checkpointer.at_frame(sim, st, totals, elapsed());
       const double wall = elapsed();
-      const double eta = sim.time() > 0 ? wall / sim.time() * (scene.time.duration - sim.time()) : 0.0;
+      eta_estimate.add(wall, sim.time());
+      const std::optional<double> eta = eta_estimate.seconds_left(scene.time.duration);
       if (tty) {
         std::fprintf(stderr, "\r  t = %.3f / %.3f s   frame %d / %d   step %ld   iterations %d   error %.3f%%   ETA %s   ",
                      sim.time(), scene.time.duration, st.frame, sim.frame_count(), st.step, st.iterations,

@@ -1,7 +1,9 @@
 #pragma once
-// A small 5x7 bitmap font drawn into RGB images on the CPU (after read-back), for
-// the colorbar labels and the overlay line. Lower-case letters draw as upper case;
-// characters without a glyph draw as a box.
+// Text drawn into RGB images on the CPU (after read-back) with stb_truetype from the
+// TrueType font chosen at build time (CMake's SLUICE_FONT, DejaVu Sans from
+// fonts-dejavu-core by default) and embedded in the program, so images never depend on
+// the fonts of the machine that runs it. Text is UTF-8; characters the font lacks draw
+// as its missing-glyph box. Sizes are pixel heights (ascent to descent).
 #include <string_view>
 
 #include "render/colormap.h"
@@ -9,12 +11,16 @@
 
 namespace sluice::render {
 
-constexpr int kGlyphWidth = 5, kGlyphHeight = 7, kGlyphAdvance = 6;
-
-// Width in pixels of `text` at integer `scale` (each font pixel is scale x scale).
-int text_width(std::string_view text, int scale);
-// Draws `text` with its top-left corner at (x, y); clipped to the image.
-void draw_text(Image& img, int x, int y, std::string_view text, int scale, Rgb color);
+// Width in pixels of `text` at pixel height `px` (the advance, rounded up).
+int text_width(std::string_view text, int px);
+// Ink rows of a line at `px`: the baseline sits ascent(px) below the line's top.
+int text_ascent(int px);
+int line_height(int px);  // ascent + descent, rounded up
+// Draws `text` with the top of its line at y and its pen starting at x; anti-aliased
+// over what is there; clipped to the image.
+void draw_text(Image& img, int x, int y, std::string_view text, int px, Rgb color);
+// The largest pixel height <= px at which `text` fits `width` (at least `min_px`).
+int fit_text_size(std::string_view text, int px, int width, int min_px = 6);
 // Fills a rectangle, clipped to the image.
 void fill_rect(Image& img, int x, int y, int w, int h, Rgb color);
 

@@ -16,16 +16,60 @@ extern char** environ;
 
 namespace sluice::render {
 
+bool parse_video_format(const std::string& text, VideoFormat& f) {
+  if (text == "mp4") f = VideoFormat::mp4;
+  else if (text == "webm") f = VideoFormat::webm;
+  else if (text == "gif") f = VideoFormat::gif;
+  else return false;
+  return true;
+}
+
+const char* extension(VideoFormat f) {
+  switch (f) {
+    case VideoFormat::mp4: return "mp4";
+    case VideoFormat::webm: return "webm";
+    case VideoFormat::gif: return "gif";
+  }
+  return "";
+}
+
+int max_crf(VideoFormat f) { return f == VideoFormat::mp4 ? 51 : f == VideoFormat::webm ? 63 : -1; }
+// 18 for H.264 (visually lossless for these flat-coloured frames), 31 for VP9 (its
+// documented constant-quality starting point).
+int default_crf(VideoFormat f) { return f == VideoFormat::mp4 ? 18 : f == VideoFormat::webm ? 31 : -1; }
+
+std::string temporary_output(const VideoJob& job) { return job.output + ".tmp." + extension(job.format); }
+
 std::vector<std::string> ffmpeg_arguments(const VideoJob& job) {
   char fps[32];
   std::snprintf(fps, sizeof fps, "%.9g", job.fps);
-  return {"ffmpeg", "-nostdin", "-hide_banner", "-loglevel", "error", "-y",
-          "-framerate", fps, "-start_number", std::to_string(job.start_number), "-i", job.frames_pattern,
-          // RGB -> Y'CbCr with the BT.709 matrix, matching the tags below
-          "-vf", "scale=out_color_matrix=bt709:out_range=tv,format=yuv420p",
-          "-c:v", "libx264", "-preset", "medium", "-crf", "18", "-pix_fmt", "yuv420p",
-          "-colorspace", "bt709", "-color_primaries", "bt709", "-color_trc", "bt709",
-          "-movflags", "+faststart", job.output + ".tmp.mp4"};
+  const std::string crf = std::to_string(job.crf >= 0 ? job.crf : default_crf(job.format));
+  std::vector<std::string> a = {"ffmpeg", "-nostdin", "-hide_banner", "-loglevel", "error", "-y",
+                                "-framerate", fps, "-start_number", std::to_string(job.start_number),
+                                "-i", job.frames_pattern};
+  auto add = [&](std::initializer_list<std::string> more) { a.insert(a.end(), more); };
+  // RGB -> Y'CbCr with the BT.709 matrix, matching the tags.
+  const std::string yuv = "scale=out_color_matrix=bt709:out_range=tv,format=yuv420p";
+  const std::initializer_list<std::string> tags = {"-colorspace", "bt709", "-color_primaries", "bt709",
+                                                   "-color_trc", "bt709"};
+  switch (job.format) {
+    case VideoFormat::mp4:
+      add({"-vf", yuv, "-c:v", "libx264", "-preset", "medium", "-crf", crf, "-pix_fmt", "yuv420p"});
+      add(tags);
+      add({"-movflags", "+faststart", "-f", "mp4"});
+      break;
+    case VideoFormat::webm:
+      add({"-vf", yuv, "-c:v", "libvpx-vp9", "-crf", crf, "-b:v", "0", "-pix_fmt", "yuv420p"});
+      add(tags);
+      add({"-f", "webm"});
+      break;
+    case VideoFormat::gif:
+      add({"-filter_complex", "[0:v]split[a][b];[a]palettegen=stats_mode=full[p];[b][p]paletteuse=dither=none",
+           "-loop", "0", "-f", "gif"});
+      break;
+  }
+  a.push_back(temporary_output(job));
+  return a;
 }
 
 std::string command_line(const std::vector<std::string>& args) {
@@ -88,11 +132,11 @@ void encode_video(const VideoJob& job) {
     const std::string how = WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status))
                                               : "killed by signal " + std::to_string(WTERMSIG(status));
     std::error_code ignored;
-    std::filesystem::remove(job.output + ".tmp.mp4", ignored);
+    std::filesystem::remove(temporary_output(job), ignored);
     throw VideoError("ffmpeg failed (" + how + "; its messages are in " + job.log + "): " + cmd);
   }
   std::error_code ec;
-  std::filesystem::rename(job.output + ".tmp.mp4", job.output, ec);
+  std::filesystem::rename(temporary_output(job), job.output, ec);
   if (ec) throw VideoError(job.output + ": cannot rename the encoded video: " + ec.message());
 }
 

@@ -15,38 +15,51 @@ namespace {
 
 constexpr Rgb kBackground{255, 255, 255};
 constexpr Rgb kInk{25, 25, 25};
-constexpr int kTickLabelChars = 7;  // tick_label() is at most this long
 
 std::string size_text(const Image& img) { return std::to_string(img.width) + "x" + std::to_string(img.height); }
 
-// The font grows with the cells, as the renderer's does with the frame, so labels stay
-// readable at any cell size: 2 for 480x270 cells, at most 4. Narrow cells keep it small
-// enough for a label like "boundary_pressure = extrapolation" (33 characters) to fit.
+// The spacing unit grows with the cells, as the renderer's labels do with the frame, so
+// labels stay readable at any cell size: 2 for 480x270 cells, at most 4. Narrow cells
+// keep it small enough for a label like "boundary_pressure = extrapolation" to fit.
 int font_scale(int cell_w, int cell_h) { return std::clamp(std::min(cell_h / 135, cell_w / 240), 1, 4); }
-int title_scale(int s) { return s + 1; }
+// Pixel height of the labels and ticks: 18 px at scale 2 (480x270 cells), 14 px (still
+// readable) at 1.
+int text_px(int s) { return 10 + 4 * s; }
+int title_px(int s) { return text_px(s) * 4 / 3; }
 
-int line_height(int s) { return (kGlyphHeight + 3) * s; }
+int line_height(int s) { return render::line_height(text_px(s)) + s; }
 
-int colorbar_strip_width(const MontageColorbar& c, int s) {
-  const int ticks = 8 * s + 4 * s + text_width(std::string(kTickLabelChars, '0'), s);
-  return std::max(ticks, text_width(c.label, s));
-}
+int colorbar_strip_width(int s) { return colorbar_width(text_px(s), 8 * s); }
 
 // `text` shortened with ".." until it fits `width` pixels: a long label must not run
 // into the neighbouring cell's band. Labels lose their start ("..PRESSURE = ZERO"), since
 // their end (the value) is what tells cells apart; a title loses its end.
 enum class Cut { start, end };
-std::string fit_text(std::string text, int width, int s, Cut cut) {
-  if (text_width(text, s) <= width) return text;
-  while (!text.empty() && text_width(text + "..", s) > width) cut == Cut::end ? text.pop_back() : (void)text.erase(0, 1);
+std::string fit_text(std::string text, int width, int px, Cut cut) {
+  if (text_width(text, px) <= width) return text;
+  // Cut whole UTF-8 characters (never a continuation byte alone).
+  auto drop = [&] {
+    if (cut == Cut::end) {
+      do text.pop_back();
+      while (!text.empty() && (static_cast<unsigned char>(text.back()) & 0xC0) == 0x80);
+      if (!text.empty() && static_cast<unsigned char>(text.back()) >= 0xC0) text.pop_back();
+    } else {
+      do text.erase(0, 1);
+      while (!text.empty() && (static_cast<unsigned char>(text.front()) & 0xC0) == 0x80);
+    }
+  };
+  while (!text.empty() && text_width(cut == Cut::end ? text + ".." : ".." + text, px) > width) drop();
   return cut == Cut::end ? text + ".." : ".." + text;
 }
 
 void draw_colorbar(Image& img, const MontageLayout& L, const MontageColorbar& c) {
-  const int s = L.scale;
-  render::draw_colorbar_bar(img, L.bar_x, L.bar_y, L.bar_w, L.bar_h, s, Colormap(c.colormap), c.lo, c.hi);
-  // The field's name in the band above the bar, as each cell's labels are above the cell.
-  draw_text(img, L.bar_x, L.bar_y - line_height(s) - 2 * s, c.label, s, kInk);
+  const int s = L.scale, px = text_px(s);
+  render::draw_colorbar_bar(img, L.bar_x, L.bar_y, L.bar_w, L.bar_h, px, Colormap(c.colormap), c.lo, c.hi);
+  // The field's name in the band above the bar, as each cell's labels are above the
+  // cell; smaller when it is wider than the strip (the layout never depends on it).
+  const int room = L.width - L.bar_x - L.margin / 2;
+  // A third of a line clear of the top tick's label, which is centred on the bar's top.
+  draw_text(img, L.bar_x, L.bar_y - line_height(s) - px / 3, c.label, fit_text_size(c.label, px, room), kInk);
 }
 
 void check_cells(const std::vector<MontageCell>& cells) {
@@ -75,7 +88,7 @@ MontageLayout montage_layout(int cell_w, int cell_h, int count, int columns, int
   L.cell_h = cell_h;
   L.margin = 8 * s;
   L.gap = 8 * s;
-  L.title_h = title ? kGlyphHeight * title_scale(s) + 8 * s : 0;
+  L.title_h = title ? render::line_height(title_px(s)) + 6 * s : 0;
   // At least one line, so that the colorbar's name has a band even without cell labels.
   L.band_h = std::max(1, label_lines) * line_height(s) + 2 * s;
   const int grid_w = L.columns * cell_w + (L.columns - 1) * L.gap;
@@ -88,7 +101,7 @@ MontageLayout montage_layout(int cell_w, int cell_h, int count, int columns, int
     L.bar_y = L.margin + L.title_h + L.band_h;
     L.bar_w = 8 * s;
     L.bar_h = grid_h - L.band_h;
-    L.width = L.bar_x + colorbar_strip_width(*colorbar, s) + L.margin;
+    L.width = L.bar_x + colorbar_strip_width(s) + L.margin;
   }
   return L;
 }
@@ -106,7 +119,7 @@ Image compose_montage(const std::vector<MontageCell>& cells, int columns, const 
   Image out(L.width, L.height);
   fill_rect(out, 0, 0, out.width, out.height, kBackground);
   if (!title.empty()) {
-    const int ts = title_scale(s);
+    const int ts = title_px(s);
     const std::string text = fit_text(title, out.width - 2 * L.margin, ts, Cut::end);
     draw_text(out, (out.width - text_width(text, ts)) / 2, L.margin, text, ts, kInk);
   }
@@ -118,7 +131,7 @@ Image compose_montage(const std::vector<MontageCell>& cells, int columns, const 
     // Lines from the top of the band; the last one sits just above the cell.
     int ty = y - L.band_h + s;
     for (const std::string& line : cells[i].labels) {
-      draw_text(out, x, ty, fit_text(line, L.cell_w, s, Cut::start), s, kInk);
+      draw_text(out, x, ty, fit_text(line, L.cell_w, text_px(s), Cut::start), text_px(s), kInk);
       ty += line_height(s);
     }
   }

@@ -20,13 +20,13 @@ struct MontageCell {
 struct MontageColorbar {
   render::ColormapName colormap = render::ColormapName::spectrum;
   double lo = 0, hi = 1;
-  std::string label;  // e.g. "PRESSURE PA M" (the font has no brackets)
+  std::string label;  // e.g. "pressure [Pa·m]"
 };
 
 // Where everything goes, from the cell size and count alone, so that tests (and anyone
 // cropping a cell out again) know the exact pixel positions.
 struct MontageLayout {
-  int scale = 1;          // font pixel size
+  int scale = 1;          // spacing unit (labels are 10 + 4 * scale pixels high)
   int columns = 1, rows = 1;
   int cell_w = 0, cell_h = 0;
   int margin = 0, gap = 0;

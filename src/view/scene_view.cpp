@@ -16,6 +16,14 @@ void parse_resolution(const std::string& s, int& w, int& h, const std::string& f
     throw FlagError(flag, s, "expected WxH with 2 <= W, H <= 16384, e.g. 1280x720");
 }
 
+namespace {
+std::string number_text(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+}  // namespace
+
 bool parse_pair(const std::string& s, double& a, double& b) {
   const size_t colon = s.find(':');
   if (colon == std::string::npos) return false;
@@ -39,17 +47,82 @@ Field parse_field(const std::string& s) {
   throw FlagError("--color-by", s, "allowed: cfl, speed, pressure, density_error");
 }
 
+constexpr render::Rgb kWall{150, 150, 150};       // boundaries at rest: neutral grey
+constexpr render::Rgb kMovingWall{84, 100, 124};  // moving boundaries: darker slate
+
+struct NamedColor {
+  const char* name;
+  render::Rgb rgb;
+};
+constexpr NamedColor kNamedColors[] = {
+    {"white", {255, 255, 255}}, {"black", {0, 0, 0}},       {"grey", {150, 150, 150}},  {"gray", {150, 150, 150}},
+    {"lightgrey", {210, 210, 210}}, {"darkgrey", {90, 90, 90}}, {"slate", {84, 100, 124}}, {"red", {200, 40, 40}},
+    {"green", {40, 150, 60}},   {"blue", {40, 80, 200}},    {"orange", {235, 140, 30}}, {"brown", {130, 85, 50}}};
+
+// Object colours: NAME=COLOUR each, the name one of the scene's objects.
+void resolve_object_colors(const ImageOptions& o, const Scene& scene, ImageConfig& c) {
+  c.object_rgb.clear();
+  for (const BoundaryObject& obj : scene.objects) c.object_rgb.push_back(obj.moving ? kMovingWall : kWall);
+  for (const std::string& item : o.object_colors) {
+    const size_t eq = item.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw FlagError("--object-color", item, "expected NAME=COLOUR, e.g. paddle=#d04040");
+    const std::string name = item.substr(0, eq), colour = item.substr(eq + 1);
+    const auto rgb = parse_color(colour);
+    if (!rgb) throw FlagError("--object-color", item, kColorsAllowed);
+    std::string names;
+    bool found = false;
+    for (size_t k = 0; k < scene.objects.size(); ++k) {
+      names += (k ? ", " : "") + scene.objects[k].name;
+      if (scene.objects[k].name == name) {
+        c.object_rgb[k] = *rgb;
+        found = true;
+      }
+    }
+    if (!found) throw FlagError("--object-color", item, "no object " + name + " in the scene; its objects: " + names);
+  }
+}
+
+}  // namespace
+
+const char* const kColorsAllowed =
+    "expected #rrggbb or one of white, black, grey, lightgrey, darkgrey, slate, red, green, blue, orange, brown";
+
+std::optional<render::Rgb> parse_color(const std::string& text) {
+  for (const NamedColor& c : kNamedColors)
+    if (text == c.name) return c.rgb;
+  const std::string hex = !text.empty() && text[0] == '#' ? text.substr(1) : text;
+  if (hex.size() != 6 || hex.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos) return std::nullopt;
+  const unsigned long v = std::stoul(hex, nullptr, 16);
+  return render::Rgb{static_cast<std::uint8_t>(v >> 16), static_cast<std::uint8_t>((v >> 8) & 255),
+                     static_cast<std::uint8_t>(v & 255)};
+}
+
 const char* field_label(Field f) {
   switch (f) {
     case Field::cfl: return "CFL";
-    case Field::speed: return "SPEED M/S";
-    case Field::pressure: return "PRESSURE PA M";
-    case Field::density_error: return "DENSITY ERROR %";
+    case Field::speed: return "speed [m/s]";
+    case Field::pressure: return "pressure [Pa\u00b7m]";
+    case Field::density_error: return "density error [%]";
   }
   return "";
 }
 
-}  // namespace
+Overlay parse_overlay(const std::string& text) {
+  if (text.empty() || text == "full") return Overlay::full;
+  if (text == "time") return Overlay::time;
+  if (text == "none") return Overlay::none;
+  throw FlagError("--overlay", text, "allowed: full, time, none");
+}
+
+std::string overlay_text(Overlay mode, double time, Index frame, long step, int iterations) {
+  char buf[160];
+  if (mode == Overlay::time)
+    std::snprintf(buf, sizeof buf, "t = %.3f s", time);
+  else
+    std::snprintf(buf, sizeof buf, "t = %.3f s    frame %d    step %ld    iterations %d", time, frame, step, iterations);
+  return mode == Overlay::none ? std::string() : std::string(buf);
+}
 
 // The automatic colour range: fixed for the whole run (no flicker between frames) and
 // derived from the scene's scales. H is the fluid's height at t = 0: sqrt(2 g H) is the
@@ -104,7 +177,18 @@ ImageConfig resolve_image(const ImageOptions& o, const Scene& scene) {
   }
   c.frame.field_label = field_label(c.field);
   c.frame.colorbar = !o.no_colorbar;
-  c.frame.overlay = !o.no_overlay;
+  c.overlay = o.no_overlay ? Overlay::none : parse_overlay(o.overlay);
+  c.frame.overlay = c.overlay != Overlay::none;
+  c.frame.title = o.title;
+  if (!(o.particle_scale > 0 && o.particle_scale <= 10))
+    throw FlagError("--particle-scale", number_text(o.particle_scale), "expected a number > 0 and <= 10 (1: discs of one spacing)");
+  c.frame.particle_scale = o.particle_scale;
+  if (!o.background.empty()) {
+    const auto bg = parse_color(o.background);
+    if (!bg) throw FlagError("--background", o.background, kColorsAllowed);
+    c.frame.background = *bg;
+  }
+  resolve_object_colors(o, scene, c);
   const Vec2 lo = rs.fixed_view ? rs.view_min : scene.bounds_min, hi = rs.fixed_view ? rs.view_max : scene.bounds_max;
   c.frame.fit_margin = !rs.fixed_view;
   c.frame.bounds_min[0] = lo.x();
@@ -124,8 +208,14 @@ std::span<const double> as_doubles(const std::vector<Vec2>& v) {
 
 // The simulation keeps boundary samples in its own (spatial) order: the moving flags
 // come from it, not from the scene's object ranges.
-FrameBuilder::FrameBuilder(const ImageConfig& c, const Simulation& sim)
-    : c_(c), moving_(sim.boundary().moving.begin(), sim.boundary().moving.end()) {}
+FrameBuilder::FrameBuilder(const ImageConfig& c, const Simulation& sim) : c_(c) {
+  const std::vector<Index>& object = sim.boundary().object;
+  for (size_t i = 0; i < sim.boundary().x.size(); ++i) {
+    const size_t k = i < object.size() ? static_cast<size_t>(object[i]) : c_.object_rgb.size();
+    boundary_rgb_.push_back(k < c_.object_rgb.size() ? c_.object_rgb[k]
+                            : sim.boundary().moving[i] ? kMovingWall : kWall);
+  }
+}
 
 FrameData FrameBuilder::build(const Simulation& sim, Index frame, const StepStats* last) {
   const Scene& scene = sim.scene();
@@ -147,14 +237,11 @@ FrameData FrameBuilder::build(const Simulation& sim, Index frame, const StepStat
   d.fluid_xy = as_doubles(f.x);
   d.fluid_value = values_;
   d.boundary_xy = as_doubles(sim.boundary().x);
-  d.boundary_moving = moving_;
+  d.boundary_rgb = boundary_rgb_;
   d.diameter = scene.spacing;
   d.lo = c_.lo;
   d.hi = c_.hi;
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "T = %.3f S   FRAME %d   STEP %ld   ITER %d", sim.time(), frame, sim.steps(),
-                last ? last->iterations : 0);
-  d.overlay = buf;
+  d.overlay = overlay_text(c_.overlay, sim.time(), frame, sim.steps(), last ? last->iterations : 0);
   return d;
 }
 

@@ -5,6 +5,7 @@
 // Shared by `sluice render` / `still` and the image regression tests, so the tests
 // render exactly what the program does.
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -29,23 +30,45 @@ struct ImageOptions {
   std::string color_by;    // cfl | speed | pressure | density_error
   std::string colormap;    // spectrum | viridis | turbo
   std::string range;       // "lo:hi" or "auto"
-  bool no_overlay = false;
+  std::string overlay;     // full | time | none (empty: full)
+  bool no_overlay = false; // the older spelling of --overlay none
+  std::string title;       // a title row above the scene (none when empty)
   bool no_colorbar = false;
+  double particle_scale = 1;  // disc diameter over the spacing, 0 < s <= 10
+  std::string background;     // colour (empty: white)
+  std::vector<std::string> object_colors;  // NAME=COLOUR, one per boundary object named
   int msaa = 0;            // 0 or 4
   std::string egl = "auto";  // auto | surfaceless | device
 };
 
 enum class Field { cfl, speed, pressure, density_error };
+enum class Overlay { full, time, none };
 
+// A colour: #rrggbb, rrggbb or a name (white, black, grey, lightgrey, darkgrey, slate,
+// red, green, blue, orange, brown); nullopt when it is none of these.
+std::optional<render::Rgb> parse_color(const std::string& text);
+// The flag's mistake, for messages.
+extern const char* const kColorsAllowed;
+
+// The colorbar's title of a field, with its unit: "speed [m/s]", "pressure [Pa·m]".
+const char* field_label(Field f);
+// The overlay line of a frame: "t = 0.500 s" (time), with frame, step and iterations (full).
+std::string overlay_text(Overlay mode, double time, Index frame, long step, int iterations);
 // Everything the image options resolve to for one scene.
 struct ImageConfig {
   render::FrameSettings frame;
   Field field = Field::cfl;
+  Overlay overlay = Overlay::full;
   double lo = 0, hi = 1;  // colour range, fixed for the run
+  // Boundary samples' colour per scene object (walls grey, moving objects slate unless
+  // given), indexed like Scene::objects.
+  std::vector<render::Rgb> object_rgb;
 };
 
 // Throws FlagError for a bad flag value.
 ImageConfig resolve_image(const ImageOptions& o, const Scene& scene);
+// --overlay full|time|none; throws FlagError.
+Overlay parse_overlay(const std::string& text);
 
 // The automatic colour range of a field: fixed for the run, from the scene's scales.
 void automatic_range(Field f, const Scene& scene, double& lo, double& hi);
@@ -65,7 +88,7 @@ class FrameBuilder {
 
  private:
   ImageConfig c_;
-  std::vector<std::uint8_t> moving_;
+  std::vector<render::Rgb> boundary_rgb_;
   std::vector<float> values_;
 };
 
