@@ -11,6 +11,7 @@
 #include "app/commands.h"
 #include "app/interrupt.h"
 #include "app/run.h"
+#include "app/wait_policy.h"
 #include "io/checkpoint.h"
 #include "io/output.h"
 #include "render/image.h"
@@ -76,6 +77,7 @@ void add_checkpoint_options(CLI::App* cmd, int& every, std::string& resume, cons
 
 int main(int argc, char** argv) {
   using namespace sluice::app;
+  set_thread_wait_policy(argv);
   CLI::App app{"sluice: 2D implicit incompressible SPH (IISPH) and WCSPH fluid simulator"};
   app.set_version_flag("--version", SLUICE_VERSION);
   app.require_subcommand(1);

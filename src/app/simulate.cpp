@@ -15,6 +15,7 @@
 #include "app/output_dir.h"
 #include "app/resume.h"
 #include "app/run.h"
+#include "app/wait_policy.h"
 #include "io/output.h"
 #include "scene/scene.h"
 #include "sim/simulation.h"
@@ -183,6 +184,7 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
       {"scene", {{"file", scene.file}, {"name", scene.name}}},
       {"parameters", scene.resolved},
       {"threads", omp_get_max_threads()},
+      {"thread_wait", thread_wait_policy()},
       {"fluid_particles", scene.fluid_x.size()},
       {"fluid_removed", scene.fluid_removed},
       {"fluid_removed_near_samples", scene.fluid_near_samples},

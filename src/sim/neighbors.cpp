@@ -121,7 +121,7 @@ void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid,
   }
   for (Index i = 0; i < n; ++i) out.offset[i + 1] += out.offset[i];
   out.j.resize(static_cast<size_t>(out.offset[n]));
-#pragma omp parallel for schedule(static, 1) if (n >= kParallelMin)
+#pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
   for (int c = 0; c < nchunks; ++c) {
     const NeighborLists::Chunk& buf = out.chunks[static_cast<size_t>(c)];
     std::copy_n(buf.j.begin(), buf.used, out.j.begin() + out.offset[chunk_begin(c)]);

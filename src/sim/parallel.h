@@ -24,7 +24,7 @@ inline constexpr Index kParallelMin = 2048;
 
 template <class F>
 void parallel_for(Index n, F&& f) {
-#pragma omp parallel for schedule(static, kForChunk) if (n >= kParallelMin)
+#pragma omp parallel for schedule(dynamic, kForChunk) if (n >= kParallelMin)
   for (Index i = 0; i < n; ++i) f(i);
 }
 
@@ -33,7 +33,7 @@ template <class F>
 double parallel_sum(Index n, F&& f) {
   const Index blocks = (n + kReduceBlock - 1) / kReduceBlock;
   std::vector<double> partial(static_cast<size_t>(blocks), 0.0);
-#pragma omp parallel for schedule(static, 1) if (n >= kParallelMin)
+#pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
   for (Index b = 0; b < blocks; ++b) {
     const Index end = std::min(n, (b + 1) * kReduceBlock);
     double s = 0.0;
@@ -50,7 +50,7 @@ template <class F>
 double parallel_max(Index n, double init, F&& f) {
   const Index blocks = (n + kReduceBlock - 1) / kReduceBlock;
   std::vector<double> partial(static_cast<size_t>(blocks), init);
-#pragma omp parallel for schedule(static, 1) if (n >= kParallelMin)
+#pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
   for (Index b = 0; b < blocks; ++b) {
     const Index end = std::min(n, (b + 1) * kReduceBlock);
     double m = init;

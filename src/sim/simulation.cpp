@@ -159,7 +159,7 @@ void Simulation::compute_volumes(const SpatialHashGrid& grid, const std::vector<
 #pragma omp parallel if (n >= kParallelMin / 8)
   {
     std::vector<Index> near;
-#pragma omp for schedule(static, kForChunk)
+#pragma omp for schedule(dynamic, kForChunk)
     for (Index k = 0; k < n; ++k) {
       const Index b = which[k];
       const Vec2 xb = x[b];
@@ -290,7 +290,7 @@ void Simulation::update_boundary_volumes() {
 #pragma omp parallel if (nm >= kParallelMin / 8)
   {
     std::vector<Index> near;
-#pragma omp for schedule(static, kForChunk)
+#pragma omp for schedule(dynamic, kForChunk)
     for (Index k = 0; k < nm; ++k) {
       const Index b = moving_[k];
       const Vec2 xb = boundary_.x[b];
@@ -905,11 +905,11 @@ double Simulation::jacobi_sweep(Index block, const PressureTerms& t) {
   // a range's early updates touch no particle of another range, so that is safe too.
 #pragma omp parallel if (n >= kParallelMin)
   {
-#pragma omp for schedule(static, 1)
+#pragma omp for schedule(dynamic, 1)
     for (Index r = 0; r < ranges; ++r) sweep_range(range[r], range[r + 1], block, t);
-#pragma omp for schedule(static, kForChunk)
+#pragma omp for schedule(dynamic, kForChunk)
     for (Index k = 0; k < nd; ++k) jacobi_update_of(scratch_.deferred[k], t);
-#pragma omp for schedule(static, 1)
+#pragma omp for schedule(dynamic, 1)
     for (Index b = 0; b < sum_blocks; ++b) {
       const Index end = std::min(n, (b + 1) * kReduceBlock);
       double sum = 0.0;

@@ -1,0 +1,60 @@
+// The program's OpenMP wait policy (src/app/wait_policy.h): set by the program itself,
+// unless the user has set one, and recorded in summary.json.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "test_process.h"
+
+namespace sluice {
+namespace {
+
+using test::CaseDir;
+
+const char* kTiny = R"({"name": "tiny", "spacing": 0.05, "time": {"duration": 0.02, "fps": 50, "dt": 0.005},
+  "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}],
+  "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.5, 0.5]}]})";
+
+// Sets or unsets an environment variable for the scope, and restores it.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    value ? setenv(name, value, 1) : unsetenv(name);
+  }
+  ~ScopedEnv() { old_ ? setenv(name_, old_->c_str(), 1) : unsetenv(name_); }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
+std::string recorded_wait_policy() {
+  CaseDir dir;
+  test::write_text(dir.work() / "tiny.json", kTiny);
+  const test::Result r = test::run_sluice(dir, {"simulate", "tiny.json", "-o", "out", "-q"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  return nlohmann::json::parse(test::read_text(dir.work() / "out" / "summary.json")).value("thread_wait", "");
+}
+
+TEST(Threads, ProgramSetsItsWaitPolicy) {
+  ScopedEnv spin("GOMP_SPINCOUNT", nullptr), policy("OMP_WAIT_POLICY", nullptr);
+  EXPECT_EQ(recorded_wait_policy(), "GOMP_SPINCOUNT=1000");
+}
+
+TEST(Threads, UsersWaitPolicyIsKept) {
+  {
+    ScopedEnv spin("GOMP_SPINCOUNT", nullptr), policy("OMP_WAIT_POLICY", "passive");
+    EXPECT_EQ(recorded_wait_policy(), "OMP_WAIT_POLICY=passive");
+  }
+  ScopedEnv spin("GOMP_SPINCOUNT", "50000"), policy("OMP_WAIT_POLICY", nullptr);
+  EXPECT_EQ(recorded_wait_policy(), "GOMP_SPINCOUNT=50000");
+}
+
+}  // namespace
+}  // namespace sluice
