@@ -13,7 +13,7 @@ struct SimulateOptions {
   double duration = 0;     // > 0 overrides time.duration
   int threads = 0;         // 0: OpenMP default
   std::vector<std::string> set;
-  std::vector<std::string> exports;  // csv, vtk
+  std::vector<std::string> exports;  // csv, vtk (empty: the scene's output.export)
   bool quiet = false;
   bool overwrite = false;  // replace a previous run in the output directory
   int checkpoint_every = 0;  // frames between checkpoints (0: none)
@@ -52,6 +52,7 @@ struct RenderOptions {
   std::string format = "mp4";    // video container: mp4 | webm | gif
   int crf = -1;                  // video quality (< 0: the format's default)
   std::string frame_pattern = "frame_%05d.png";  // the PNG frames' names (printf, one %d)
+  std::vector<std::string> exports;  // csv, vtk (empty: the scene's output.export)
   int threads = 0;
   std::vector<std::string> set;
   bool quiet = false;

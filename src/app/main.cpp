@@ -52,6 +52,15 @@ int flag_error(const CLI::App& app, const CLI::ParseError& e) {
   return 1;
 }
 
+// --export of `simulate` and `render`: the particle exports at every frame (io/export.h),
+// in place of the scene's output.export.
+void add_export_option(CLI::App* cmd, std::vector<std::string>& exports) {
+  cmd->add_option("--export", exports, "Particle exports at every frame: csv, vtk (VTK XML .vtp and a ParaView .pvd); "
+                                       "default: the scene's output.export")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"csv", "vtk"}));
+}
+
 // --checkpoint-every and --resume of `simulate` and `render`. With --resume the scene and
 // every flag that shapes the results come from DIR/checkpoints/run.json: only SCENE (a
 // moved scene file, checked by its hash), --threads, -q and --checkpoint-every may be
@@ -91,9 +100,7 @@ int main(int argc, char** argv) {
   simulate->add_option("--threads", sim.threads, "OpenMP threads (default: all cores)")->check(threads);
   simulate->add_option("--set", sim.set, "Override a scene value: path=value, e.g. solver.tolerance=0.05")
       ->take_all();
-  simulate->add_option("--export", sim.exports, "Particle exports at every frame: csv, vtk")
-      ->delimiter(',')
-      ->check(CLI::IsMember({"csv", "vtk"}));
+  add_export_option(simulate, sim.exports);
   simulate->add_flag("-q,--quiet", sim.quiet, "No progress output");
   simulate->add_flag("--overwrite", sim.overwrite, "Replace a previous run in the output directory");
   add_checkpoint_options(simulate, sim.checkpoint_every, sim.resume, sim.scene);
@@ -151,6 +158,7 @@ int main(int argc, char** argv) {
   render->add_option("--crf", ren.crf, "Video quality, lower is better: mp4 0-51 (default 18), webm 0-63 (default 31)")
       ->check(number_check(true, 0, false, 63));
   render->add_option("--frame-pattern", ren.frame_pattern, "Names of the PNG frames, one %d or %0Nd (default frame_%05d.png)");
+  add_export_option(render, ren.exports);
   render->add_option("--threads", ren.threads, "OpenMP threads (default: all cores)")->check(threads);
   render->add_option("--set", ren.set, "Override a scene value: path=value")->take_all();
   render->add_flag("-q,--quiet", ren.quiet, "No progress output");

@@ -140,6 +140,7 @@ int run_render(const RenderOptions& given) {
   std::vector<std::string> overrides = o.set;
   if (o.duration > 0) overrides.push_back(number_override("time.duration", o.duration));
   if (o.fps > 0) overrides.push_back(number_override("time.fps", o.fps));
+  if (!o.exports.empty()) overrides.push_back(export_override(o.exports));
   Scene scene = load_scene(o.scene, overrides);
 
   Index first = 0, last = std::numeric_limits<Index>::max();
@@ -185,6 +186,11 @@ int run_render(const RenderOptions& given) {
   Image image;
   Index rendered = 0;
   double ms_render = 0;
+  catch_interrupts();
+  RunControl control = make_run_control(o.resume, o.checkpoint_every, run_record(o), dir, scene, o.quiet);
+  control.command = "render";
+  // Exports of the frames rendered, as `simulate` writes them.
+  ParticleExporter exporter = make_exporter(scene, dir, control, first, last);
   auto on_frame = [&](const Simulation& sim, Index frame, const StepStats* st) {
     if (frame < first || frame > last) return;
     const auto t0 = std::chrono::steady_clock::now();
@@ -193,10 +199,8 @@ int run_render(const RenderOptions& given) {
     writer.write((frames_dir / frame_file(o.frame_pattern, frame)).string(), image);
     ms_render += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     ++rendered;
+    exporter.write(frame, sim.time(), sim.fluid(), sim.boundary());
   };
-  catch_interrupts();
-  RunControl control = make_run_control(o.resume, o.checkpoint_every, run_record(o), dir, scene, o.quiet);
-  control.command = "render";
   // A resumed run's PNGs before the checkpoint's frame were written by the earlier run.
   const long earlier =
       control.resume ? std::max<long>(0, std::min<long>(last, control.resume->checkpoint.state.frame - 1) - first + 1) : 0;
