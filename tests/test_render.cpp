@@ -45,8 +45,9 @@ const char* kScene = R"({
   "boundaries": [ { "name": "tank", "shape": "box", "min": [0, 0], "max": [0.4, 0.25], "lid": false, "layers": 2 } ]
 })";
 
-constexpr int kTolerance = 8;
-constexpr double kMaxFraction = 0.005;
+// The rule of `sluice compare --preset tests` (one constant: they cannot drift apart).
+constexpr int kTolerance = kTestsRule.tolerance;
+constexpr double kMaxFraction = kTestsRule.max_fraction;
 
 void check_against_golden(const Image& actual, const std::string& name) {
   const fs::path golden = fs::path(SLUICE_SOURCE_DIR) / "tests" / "golden" / name;

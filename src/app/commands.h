@@ -74,10 +74,16 @@ int run_still(const StillOptions& o);
 
 struct CompareOptions {
   std::string a, b;
-  int tolerance = 0;          // allowed channel difference per pixel
-  double max_fraction = 0;    // share of pixels allowed beyond the tolerance
-  std::string diff;           // diff image path (written when the images differ)
+  std::string preset = "strict";     // strict | tests (render::kStrictRule, kTestsRule)
+  int tolerance = -1;                // allowed channel difference per pixel; < 0: the preset's
+  double max_fraction = -1;          // share of compared pixels allowed beyond it; < 0: the preset's
+  std::string mask;                  // PNG of the images' size: its non-black pixels are ignored
+  std::vector<std::string> regions;  // "x,y,w,h": ignored rectangles
+  std::string diff;                  // diff image path (written when the images differ)
 };
+// The exit status of `sluice compare`, for CI scripts (docs/cli.md). A FlagError is a
+// usage error there; an ImageReadError or OutputError an I/O error.
+enum CompareExit : int { kCompareSame = 0, kCompareDifferent = 1, kCompareUsage = 2, kCompareIo = 3, kCompareSize = 4 };
 int run_compare(const CompareOptions& o);
 
 struct BenchRenderOptions {
