@@ -355,6 +355,28 @@ TEST(CliErrors, OverwriteReplacesPreviousRun) {
   expect_no_partial_files(dir.work());
 }
 
+// --overwrite also removes the videos of the other formats, their temporary names and
+// frames of any --frame-pattern (a PNG in frames/ whose name holds a number).
+TEST(CliErrors, OverwriteRemovesOtherVideosAndPatterns) {
+  CaseDir dir;
+  write_text(dir.work() / "x.json", tiny());
+  for (const char* f : {"out/summary.json", "out/tiny.webm", "out/tiny.gif", "out/tiny.webm.tmp.webm",
+                        "out/tiny.gif.tmp.gif", "out/frames/shot-000.png", "out/frames/shot-001.png.tmp",
+                        "out/frames/frame_00003.png"})
+    write_text(dir.work() / f, "old");
+  write_text(dir.work() / "out/frames/legend.png", "mine: no frame number");
+  write_text(dir.work() / "out/tiny.webm.txt", "mine");
+  const Result refused = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out"});
+  expect_one_clear_line(refused, 3, {"(summary.json, frames/, tiny.webm, tiny.webm.tmp.webm, tiny.gif, tiny.gif.tmp.gif)"});
+  const Result r = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--overwrite"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* f : {"out/tiny.webm", "out/tiny.gif", "out/tiny.webm.tmp.webm", "out/tiny.gif.tmp.gif",
+                        "out/frames/shot-000.png", "out/frames/shot-001.png.tmp", "out/frames/frame_00003.png"})
+    EXPECT_FALSE(fs::exists(dir.work() / f)) << f;
+  EXPECT_EQ(read_text(dir.work() / "out/frames/legend.png"), "mine: no frame number");
+  EXPECT_EQ(read_text(dir.work() / "out/tiny.webm.txt"), "mine");
+}
+
 // ffmpeg absent: the frames are kept, no video or log that suggests one, exit 5. Needs
 // a headless EGL display; skipped (with the reason) where there is none.
 TEST(RenderCli, FfmpegAbsentKeepsFrames) {

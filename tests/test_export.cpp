@@ -2,7 +2,7 @@
 // fluid and of the boundary samples, and the ParaView collection (.pvd), from `simulate`
 // and `render`; the files are parsed with expat (a real XML parser), their point counts,
 // arrays and object ids checked against the scene, the collection's times against the
-// frame times, also after an unstable end.
+// frame times, also after an unstable end; --overwrite removes old exports.
 #include <expat.h>
 #include <gtest/gtest.h>
 
@@ -249,6 +249,20 @@ TEST(Exports, CollectionIsValidAfterAnUnstableRun) {
   for (const DataSet& d : sets) EXPECT_TRUE(fs::exists(dir.work() / "out/particles" / d.file)) << d.file;
   for (const auto& e : fs::directory_iterator(dir.work() / "out/particles"))
     EXPECT_NE(e.path().extension(), ".tmp") << e.path();
+}
+
+// --overwrite removes the exports of the previous run (and nothing else in particles/).
+TEST(Exports, OverwriteRemovesOldExports) {
+  CaseDir dir;
+  write_text(dir.work() / "x.json", kScene);
+  ASSERT_EQ(run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--export", "csv,vtk"}).status, 0);
+  write_text(dir.work() / "out/particles/frame_00009.vtk", "an older version's legacy file");
+  write_text(dir.work() / "out/particles/notes.txt", "mine");
+  const Result r = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--overwrite", "--set", "output.export=[]"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir.work() / "out/particles")) left.push_back(e.path().filename().string());
+  EXPECT_EQ(left, std::vector<std::string>{"notes.txt"});
 }
 
 // `render` writes the scene's output.export, and --export replaces it. Needs EGL (Render*).
