@@ -610,34 +610,41 @@ TEST(RenderReliability, SignalsStopARenderAndKeepItsRecord) {
   }
 }
 
-// 11: SIGTERM while ffmpeg encodes stops ffmpeg too (no orphan), removes its partial file,
-// and the summary says "interrupted" with the command that makes the video.
+// 11: SIGTERM while ffmpeg encodes stops ffmpeg too (no orphan), removes its partial file
+// (each format's own temporary name), and the summary says "interrupted" with the
+// command that makes the video.
 TEST(RenderReliability, SigtermWhileEncodingStopsFfmpeg) {
-  CaseDir dir;
-  write_text(dir.work() / "x.json", tiny());
-  // A stand-in ffmpeg that starts its output file and then takes its time.
-  const fs::path bin = dir.base() / "bin";
-  write_text(bin / "ffmpeg", "#!/bin/sh\necho $$ > ffmpeg.pid\nfor a; do last=$a; done\n: > \"$last\"\nexec /bin/sleep 60\n");
-  fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
-  if (const std::string why = no_egl(dir); !why.empty()) GTEST_SKIP() << "no headless EGL here: " << why;
-  const pid_t pid = test::start_sluice(dir, {"render", "x.json", "-q", "-o", "out", "--resolution", "64x64"}, bin.string());
-  if (!wait_for_file(dir.work() / "ffmpeg.pid", 60) || read_text(dir.work() / "ffmpeg.pid").empty()) {
-    kill(pid, SIGKILL);
-    FAIL() << "the stand-in ffmpeg did not start: " << test::wait_sluice(dir, pid).err;
+  for (const std::string format : {"mp4", "webm"}) {
+    SCOPED_TRACE(format);
+    CaseDir dir;
+    write_text(dir.work() / "x.json", tiny());
+    // A stand-in ffmpeg that starts its output file and then takes its time.
+    const fs::path bin = dir.base() / "bin";
+    write_text(bin / "ffmpeg", "#!/bin/sh\necho $$ > ffmpeg.pid\nfor a; do last=$a; done\n: > \"$last\"\nexec /bin/sleep 60\n");
+    fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
+    if (const std::string why = no_egl(dir); !why.empty()) GTEST_SKIP() << "no headless EGL here: " << why;
+    const pid_t pid = test::start_sluice(
+        dir, {"render", "x.json", "-q", "-o", "out", "--resolution", "64x64", "--format", format}, bin.string());
+    if (!wait_for_file(dir.work() / "ffmpeg.pid", 60) || read_text(dir.work() / "ffmpeg.pid").empty()) {
+      kill(pid, SIGKILL);
+      FAIL() << "the stand-in ffmpeg did not start: " << test::wait_sluice(dir, pid).err;
+    }
+    const fs::path partial = dir.work() / ("out/tiny." + format + ".tmp." + format);
+    wait_for_file(partial, 5);  // let it create its output file
+    const pid_t ffmpeg = std::stoi(read_text(dir.work() / "ffmpeg.pid"));
+    kill(pid, SIGTERM);
+    const Result r = test::wait_sluice(dir, pid);
+    const bool orphan = kill(ffmpeg, 0) == 0;
+    if (orphan) kill(ffmpeg, SIGKILL);
+    EXPECT_FALSE(orphan) << "ffmpeg still runs";
+    fs::remove(dir.work() / "ffmpeg.pid");
+    expect_one_clear_line(r, 143, {"sluice: interrupted by SIGTERM while ffmpeg encoded out/tiny." + format,
+                                   "make the video with: ffmpeg "});
+    EXPECT_FALSE(fs::exists(partial));
+    EXPECT_FALSE(fs::exists(dir.work() / ("out/tiny." + format)));
+    expect_no_partial_files(dir.work());
+    EXPECT_EQ(nlohmann::json::parse(read_text(dir.work() / "out/summary.json"))["status"], "interrupted");
   }
-  usleep(200000);  // let it create its output file
-  const pid_t ffmpeg = std::stoi(read_text(dir.work() / "ffmpeg.pid"));
-  kill(pid, SIGTERM);
-  const Result r = test::wait_sluice(dir, pid);
-  const bool orphan = kill(ffmpeg, 0) == 0;
-  if (orphan) kill(ffmpeg, SIGKILL);
-  EXPECT_FALSE(orphan) << "ffmpeg still runs";
-  fs::remove(dir.work() / "ffmpeg.pid");
-  expect_one_clear_line(r, 143, {"sluice: interrupted by SIGTERM while ffmpeg encoded out/tiny.mp4", "make the video with: ffmpeg "});
-  EXPECT_FALSE(fs::exists(dir.work() / "out/tiny.mp4.tmp.mp4"));
-  EXPECT_FALSE(fs::exists(dir.work() / "out/tiny.mp4"));
-  expect_no_partial_files(dir.work());
-  EXPECT_EQ(nlohmann::json::parse(read_text(dir.work() / "out/summary.json"))["status"], "interrupted");
 }
 
 }  // namespace
