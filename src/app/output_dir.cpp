@@ -39,6 +39,7 @@ bool has_digit(const std::string& name) {
 bool is_frame_file(const std::string& folder, std::string name) {
   if (name.ends_with(".tmp")) name.resize(name.size() - 4);
   if (folder == "frames") return name.ends_with(".png") && has_digit(name);
+  if (folder != "particles") return false;  // checkpoints/: the Checkpointer clears its own
   return name == kCollectionFile ||
          (name.starts_with("frame_") && (name.ends_with(".csv") || name.ends_with(".vtp") || name.ends_with(".vtk")));
 }
