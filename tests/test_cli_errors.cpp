@@ -625,7 +625,10 @@ TEST(RenderReliability, SigtermWhileEncodingStopsFfmpeg) {
     if (const std::string why = no_egl(dir); !why.empty()) GTEST_SKIP() << "no headless EGL here: " << why;
     const pid_t pid = test::start_sluice(
         dir, {"render", "x.json", "-q", "-o", "out", "--resolution", "64x64", "--format", format}, bin.string());
-    if (!wait_for_file(dir.work() / "ffmpeg.pid", 60) || read_text(dir.work() / "ffmpeg.pid").empty()) {
+    // The shell creates ffmpeg.pid before it writes the pid: wait for the text.
+    bool started = wait_for_file(dir.work() / "ffmpeg.pid", 60);
+    for (int i = 0; started && i < 500 && read_text(dir.work() / "ffmpeg.pid").empty(); ++i) usleep(10000);
+    if (!started || read_text(dir.work() / "ffmpeg.pid").empty()) {
       kill(pid, SIGKILL);
       FAIL() << "the stand-in ffmpeg did not start: " << test::wait_sluice(dir, pid).err;
     }
