@@ -5,6 +5,8 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev nlohmann-json3-dev libcli11-dev libgtest-dev
+  # the export tests' XML parser
+  libexpat1-dev
   # renderer: glad loader generator, stb image I/O and TrueType, fast deflate, headless EGL (Mesa), video
   python3-glad libstb-dev libdeflate-dev libegl-dev libegl-mesa0 libgl1-mesa-dri ffmpeg
   # the labels' font, embedded at build time (pinned: another version changes the goldens)

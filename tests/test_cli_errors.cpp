@@ -200,8 +200,8 @@ std::vector<Case> cases() {
       {"scene among the files --overwrite removes", {{"out/summary.json", ok}},
        {"simulate", "out/summary.json", "-q", "-o", "out", "--overwrite"}, 3,
        {"sluice: output error: out/summary.json: --overwrite would delete the scene file out/summary.json"}},
-      {"compare --diff onto an input", {{"a.png", "x"}, {"b.png", "y"}}, {"compare", "a.png", "b.png", "--diff", "a.png"}, 3,
-       {"sluice: output error: a.png: --diff names the input image a.png"}},
+      {"compare --diff onto an input", {{"a.png", "x"}, {"b.png", "y"}}, {"compare", "a.png", "b.png", "--diff", "a.png"}, 2,
+       {"sluice: error: --diff a.png: it names the input image a.png"}},
       // 3: steps that never end
       {"too many steps", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "time.dt=1e-9"}, 2,
        {"x.json: /time/dt: dt 1e-09 s for 0.02 s (settle + duration) makes at least 20000000 steps; the limit is 10000000"}},
@@ -226,7 +226,7 @@ std::vector<Case> cases() {
       {"render.range +-1e308", {{"x.json", tiny(R"("render": {"range": [-1e308, 1e308]},)")}}, {"render", "x.json", "-q"}, 2,
        {"x.json: /render/range: range [-1e+308,1e+308] must be [lo, hi] with lo < hi and hi - lo finite"}},
       // 7: --max-fraction nan
-      {"compare --max-fraction nan", {{"a.png", "x"}}, {"compare", "a.png", "a.png", "--max-fraction", "nan"}, 1,
+      {"compare --max-fraction nan", {{"a.png", "x"}}, {"compare", "a.png", "a.png", "--max-fraction", "nan"}, 2,
        {"sluice: --max-fraction: expected a number >= 0 and <= 1, got 'nan'"}},
       // 8: a polygon without area
       {"zero-area fluid polygon", {{"x.json", tiny("", R"([{"shape": "polygon", "points": [[0, 0], [0.3, 0.3], [0.15, 0.15]]}])")}},
@@ -239,12 +239,12 @@ std::vector<Case> cases() {
                             {"shape": "polyline", "points": [[0, -0.2], [1, -0.2], [0.5, -0.2]]}])")}},
        {"simulate", "x.json", "-q"}, 2,
        {"x.json: /boundaries/1/points: segment 0 crosses or runs along another segment; the polyline must not intersect or overlap itself"}},
-      // 13: compare's inputs have their own exit status
-      {"compare: missing image", {{"a.png", "x"}}, {"compare", "nope.png", "a.png"}, 8,
+      // 13: compare's inputs have their own exit status (3, an I/O error: docs/cli.md)
+      {"compare: missing image", {{"a.png", "x"}}, {"compare", "nope.png", "a.png"}, 3,
        {"sluice: input image error: nope.png: cannot open PNG: No such file or directory"}},
-      {"compare: not a PNG", {{"a.png", "not a png"}}, {"compare", "a.png", "a.png"}, 8,
+      {"compare: not a PNG", {{"a.png", "not a png"}}, {"compare", "a.png", "a.png"}, 3,
        {"sluice: input image error: a.png: cannot read PNG: "}},
-      {"compare: truncated PNG", {{"a.png", std::string("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR", 16)}}, {"compare", "a.png", "a.png"}, 8,
+      {"compare: truncated PNG", {{"a.png", std::string("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR", 16)}}, {"compare", "a.png", "a.png"}, 3,
        {"sluice: input image error: a.png: cannot read PNG: "}},
       // 14: a duration too short for a step
       {"tiny duration", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--duration", "1e-300"}, 2,
@@ -353,6 +353,28 @@ TEST(CliErrors, OverwriteReplacesPreviousRun) {
   EXPECT_EQ(read_text(dir.work() / "out/notes.txt"), "mine");
   EXPECT_EQ(nlohmann::json::parse(read_text(dir.work() / "out/summary.json"))["status"], "completed");
   expect_no_partial_files(dir.work());
+}
+
+// --overwrite also removes the videos of the other formats, their temporary names and
+// frames of any --frame-pattern (a PNG in frames/ whose name holds a number).
+TEST(CliErrors, OverwriteRemovesOtherVideosAndPatterns) {
+  CaseDir dir;
+  write_text(dir.work() / "x.json", tiny());
+  for (const char* f : {"out/summary.json", "out/tiny.webm", "out/tiny.gif", "out/tiny.webm.tmp.webm",
+                        "out/tiny.gif.tmp.gif", "out/frames/shot-000.png", "out/frames/shot-001.png.tmp",
+                        "out/frames/frame_00003.png"})
+    write_text(dir.work() / f, "old");
+  write_text(dir.work() / "out/frames/legend.png", "mine: no frame number");
+  write_text(dir.work() / "out/tiny.webm.txt", "mine");
+  const Result refused = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out"});
+  expect_one_clear_line(refused, 3, {"(summary.json, frames/, tiny.webm, tiny.webm.tmp.webm, tiny.gif, tiny.gif.tmp.gif)"});
+  const Result r = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--overwrite"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* f : {"out/tiny.webm", "out/tiny.gif", "out/tiny.webm.tmp.webm", "out/tiny.gif.tmp.gif",
+                        "out/frames/shot-000.png", "out/frames/shot-001.png.tmp", "out/frames/frame_00003.png"})
+    EXPECT_FALSE(fs::exists(dir.work() / f)) << f;
+  EXPECT_EQ(read_text(dir.work() / "out/frames/legend.png"), "mine: no frame number");
+  EXPECT_EQ(read_text(dir.work() / "out/tiny.webm.txt"), "mine");
 }
 
 // ffmpeg absent: the frames are kept, no video or log that suggests one, exit 5. Needs
@@ -588,34 +610,44 @@ TEST(RenderReliability, SignalsStopARenderAndKeepItsRecord) {
   }
 }
 
-// 11: SIGTERM while ffmpeg encodes stops ffmpeg too (no orphan), removes its partial file,
-// and the summary says "interrupted" with the command that makes the video.
+// 11: SIGTERM while ffmpeg encodes stops ffmpeg too (no orphan), removes its partial file
+// (each format's own temporary name), and the summary says "interrupted" with the
+// command that makes the video.
 TEST(RenderReliability, SigtermWhileEncodingStopsFfmpeg) {
-  CaseDir dir;
-  write_text(dir.work() / "x.json", tiny());
-  // A stand-in ffmpeg that starts its output file and then takes its time.
-  const fs::path bin = dir.base() / "bin";
-  write_text(bin / "ffmpeg", "#!/bin/sh\necho $$ > ffmpeg.pid\nfor a; do last=$a; done\n: > \"$last\"\nexec /bin/sleep 60\n");
-  fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
-  if (const std::string why = no_egl(dir); !why.empty()) GTEST_SKIP() << "no headless EGL here: " << why;
-  const pid_t pid = test::start_sluice(dir, {"render", "x.json", "-q", "-o", "out", "--resolution", "64x64"}, bin.string());
-  if (!wait_for_file(dir.work() / "ffmpeg.pid", 60) || read_text(dir.work() / "ffmpeg.pid").empty()) {
-    kill(pid, SIGKILL);
-    FAIL() << "the stand-in ffmpeg did not start: " << test::wait_sluice(dir, pid).err;
+  for (const std::string format : {"mp4", "webm"}) {
+    SCOPED_TRACE(format);
+    CaseDir dir;
+    write_text(dir.work() / "x.json", tiny());
+    // A stand-in ffmpeg that starts its output file and then takes its time.
+    const fs::path bin = dir.base() / "bin";
+    write_text(bin / "ffmpeg", "#!/bin/sh\necho $$ > ffmpeg.pid\nfor a; do last=$a; done\n: > \"$last\"\nexec /bin/sleep 60\n");
+    fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
+    if (const std::string why = no_egl(dir); !why.empty()) GTEST_SKIP() << "no headless EGL here: " << why;
+    const pid_t pid = test::start_sluice(
+        dir, {"render", "x.json", "-q", "-o", "out", "--resolution", "64x64", "--format", format}, bin.string());
+    // The shell creates ffmpeg.pid before it writes the pid: wait for the text.
+    bool started = wait_for_file(dir.work() / "ffmpeg.pid", 60);
+    for (int i = 0; started && i < 500 && read_text(dir.work() / "ffmpeg.pid").empty(); ++i) usleep(10000);
+    if (!started || read_text(dir.work() / "ffmpeg.pid").empty()) {
+      kill(pid, SIGKILL);
+      FAIL() << "the stand-in ffmpeg did not start: " << test::wait_sluice(dir, pid).err;
+    }
+    const fs::path partial = dir.work() / ("out/tiny." + format + ".tmp." + format);
+    wait_for_file(partial, 5);  // let it create its output file
+    const pid_t ffmpeg = std::stoi(read_text(dir.work() / "ffmpeg.pid"));
+    kill(pid, SIGTERM);
+    const Result r = test::wait_sluice(dir, pid);
+    const bool orphan = kill(ffmpeg, 0) == 0;
+    if (orphan) kill(ffmpeg, SIGKILL);
+    EXPECT_FALSE(orphan) << "ffmpeg still runs";
+    fs::remove(dir.work() / "ffmpeg.pid");
+    expect_one_clear_line(r, 143, {"sluice: interrupted by SIGTERM while ffmpeg encoded out/tiny." + format,
+                                   "make the video with: ffmpeg "});
+    EXPECT_FALSE(fs::exists(partial));
+    EXPECT_FALSE(fs::exists(dir.work() / ("out/tiny." + format)));
+    expect_no_partial_files(dir.work());
+    EXPECT_EQ(nlohmann::json::parse(read_text(dir.work() / "out/summary.json"))["status"], "interrupted");
   }
-  usleep(200000);  // let it create its output file
-  const pid_t ffmpeg = std::stoi(read_text(dir.work() / "ffmpeg.pid"));
-  kill(pid, SIGTERM);
-  const Result r = test::wait_sluice(dir, pid);
-  const bool orphan = kill(ffmpeg, 0) == 0;
-  if (orphan) kill(ffmpeg, SIGKILL);
-  EXPECT_FALSE(orphan) << "ffmpeg still runs";
-  fs::remove(dir.work() / "ffmpeg.pid");
-  expect_one_clear_line(r, 143, {"sluice: interrupted by SIGTERM while ffmpeg encoded out/tiny.mp4", "make the video with: ffmpeg "});
-  EXPECT_FALSE(fs::exists(dir.work() / "out/tiny.mp4.tmp.mp4"));
-  EXPECT_FALSE(fs::exists(dir.work() / "out/tiny.mp4"));
-  expect_no_partial_files(dir.work());
-  EXPECT_EQ(nlohmann::json::parse(read_text(dir.work() / "out/summary.json"))["status"], "interrupted");
 }
 
 }  // namespace

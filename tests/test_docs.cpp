@@ -147,7 +147,11 @@ std::vector<std::string> problems_of(const Command& c, const std::set<std::strin
     if (choices.empty() || k + 1 >= c.words.size()) continue;
     const std::string v = c.words[k + 1];
     if (v.starts_with("-") || is_placeholder(v)) continue;
-    if (!choices.count(v)) bad.push_back("value " + v + " of " + flag + " is not one of its choices in: " + c.text);
+    // A list option ("{csv,vtk} ...") takes comma-separated choices: --export csv,vtk.
+    const bool list = line.find("} ...") != std::string::npos;
+    std::istringstream parts(v);
+    for (std::string part; std::getline(parts, part, list ? ',' : '\0');)
+      if (!choices.count(part)) bad.push_back("value " + v + " of " + flag + " is not one of its choices in: " + c.text);
   }
   return bad;
 }
@@ -183,6 +187,9 @@ TEST(Docs, CheckRejectsWhatTheProgramWould) {
   EXPECT_EQ(problems("sluice render scenes/dam_break.json --color-by sped"), 1u);
   EXPECT_EQ(problems("sluice render scenes/no_such_scene.json"), 1u);
   EXPECT_EQ(problems("sluice figures series a.csv --pareto-front"), 1u);
+  EXPECT_EQ(problems("sluice simulate scenes/dam_break.json --export csv,vtk"), 0u);
+  EXPECT_EQ(problems("sluice simulate scenes/dam_break.json --export csv,pdf"), 1u);
+  EXPECT_EQ(problems("sluice render scenes/dam_break.json --color-by speed,cfl"), 1u);
 }
 
 }  // namespace

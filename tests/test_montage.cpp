@@ -3,10 +3,7 @@
 // itself on a tiny scene. Only RenderMontage.* needs EGL (CI's sanitizer pass leaves
 // Render* out); the bad-input cases fail before any rendering.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -17,6 +14,7 @@
 
 #include "render/colormap.h"
 #include "render/image.h"
+#include "test_process.h"
 #include "view/montage.h"
 
 namespace sluice {
@@ -178,45 +176,6 @@ TEST(Montage, ErrorsSayWhatIsWrong) {
 
 // --- the program ---------------------------------------------------------------------------
 
-class TempDir {
- public:
-  TempDir() {
-    std::string tmpl = (fs::temp_directory_path() / "sluice_montage_XXXXXX").string();
-    if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-    path_ = tmpl;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
-struct RunResult {
-  int status = -1;
-  std::string err;
-};
-
-// The program with `args` (single-quoted for the shell), one thread: the cases are tiny.
-RunResult sluice(const std::vector<std::string>& args, const fs::path& dir) {
-  std::string cmd = "OMP_NUM_THREADS=1 '" + std::string(SLUICE_EXE) + "'";
-  for (const std::string& a : args) cmd += " '" + a + "'";
-  const fs::path errfile = dir / "stderr.txt";
-  cmd += " 2>'" + errfile.string() + "'";
-  const int status = std::system(cmd.c_str());
-  RunResult r;
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(errfile);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.err = ss.str();
-  fs::remove(errfile);
-  return r;
-}
-
 const std::string kColumn = std::string(SLUICE_SOURCE_DIR) + "/scenes/column.json";
 
 std::vector<std::string> tiny_montage(const std::vector<std::string>& extra) {
@@ -233,11 +192,10 @@ Image crop(const Image& img, int x0, int y0, int w, int h) {
 }
 
 TEST(RenderMontage, VaryGivesGridOfFourDistinctCells) {
-  TempDir dir;
-  const fs::path png = dir.path() / "m.png";
-  const RunResult r = sluice(tiny_montage({"--times", "0,0.1", "--vary", "solver.boundary_pressure=extrapolation,zero",
-                                     "--cell", "160x90", "--color-by", "speed", "-o", png.string()}),
-                       dir.path());
+  const test::CaseDir dir;
+  const fs::path png = dir.work() / "m.png";
+  const test::Result r = test::run_sluice(dir, tiny_montage({"--times", "0,0.1", "--vary", "solver.boundary_pressure=extrapolation,zero",
+                                     "--cell", "160x90", "--color-by", "speed", "-o", png.string()}));
   ASSERT_EQ(r.status, 0) << r.err;
   const Image m = read_png(png.string());
   // Two variants x two times, variant-major: columns = the number of times; two label
@@ -266,11 +224,11 @@ TEST(RenderMontage, VaryGivesGridOfFourDistinctCells) {
 
 // Bad input: one clear line, the right status, and no image.
 void expect_refused(const std::vector<std::string>& extra, int status, const std::vector<std::string>& fragments) {
-  TempDir dir;
-  const fs::path png = dir.path() / "m.png";
+  const test::CaseDir dir;
+  const fs::path png = dir.work() / "m.png";
   std::vector<std::string> args = extra;
   args.insert(args.end(), {"-o", png.string()});
-  const RunResult r = sluice(tiny_montage(args), dir.path());
+  const test::Result r = test::run_sluice(dir, tiny_montage(args));
   EXPECT_EQ(r.status, status) << r.err;
   EXPECT_EQ(r.err.rfind("sluice:", 0), 0u) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
@@ -297,9 +255,9 @@ TEST(Montage, RefusesUnknownVaryKey) {
 TEST(Montage, RefusesZeroColumns) { expect_refused({"--times", "0,0.1", "--cols", "0"}, 1, {"--cols", "'0'"}); }
 
 TEST(Montage, RefusesOutputInMissingFolder) {
-  TempDir dir;
-  const fs::path png = dir.path() / "no_such_folder" / "m.png";
-  const RunResult r = sluice(tiny_montage({"--times", "0,0.1", "-o", png.string()}), dir.path());
+  const test::CaseDir dir;
+  const fs::path png = dir.work() / "no_such_folder" / "m.png";
+  const test::Result r = test::run_sluice(dir, tiny_montage({"--times", "0,0.1", "-o", png.string()}));
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_NE(r.err.find("sluice: output error:"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("no_such_folder does not exist"), std::string::npos) << r.err;

@@ -10,7 +10,6 @@
 //   SLUICE_UPDATE_GOLDENS=1 build/sluice_tests --gtest_filter='RenderGolden.*'
 // Without an EGL display these tests fail with the EGL error; they never skip.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
@@ -27,6 +26,7 @@
 #include "render/video.h"
 #include "scene/scene.h"
 #include "sim/simulation.h"
+#include "test_process.h"
 #include "view/scene_view.h"
 
 namespace sluice {
@@ -45,8 +45,9 @@ const char* kScene = R"({
   "boundaries": [ { "name": "tank", "shape": "box", "min": [0, 0], "max": [0.4, 0.25], "lid": false, "layers": 2 } ]
 })";
 
-constexpr int kTolerance = 8;
-constexpr double kMaxFraction = 0.005;
+// The rule of `sluice compare --preset tests` (one constant: they cannot drift apart).
+constexpr int kTolerance = kTestsRule.tolerance;
+constexpr double kMaxFraction = kTestsRule.max_fraction;
 
 void check_against_golden(const Image& actual, const std::string& name) {
   const fs::path golden = fs::path(SLUICE_SOURCE_DIR) / "tests" / "golden" / name;
@@ -404,26 +405,6 @@ TEST(Video, FormatsAndQualityReachFfmpeg) {
 
 // --- The program's render flags ----------------------------------------------------------
 
-struct RunResult {
-  int status = -1;
-  std::string err;
-};
-
-RunResult run_sluice(const std::vector<std::string>& args, const fs::path& dir) {
-  std::string cmd = "OMP_NUM_THREADS=1 '" + std::string(SLUICE_EXE) + "'";
-  for (const std::string& a : args) cmd += " '" + a + "'";
-  const fs::path errfile = dir / "stderr.txt";
-  cmd += " 2>'" + errfile.string() + "'";
-  const int status = std::system(cmd.c_str());
-  RunResult r;
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(errfile);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.err = ss.str();
-  return r;
-}
-
 std::vector<std::string> tiny_render(const fs::path& out, const std::vector<std::string>& extra) {
   std::vector<std::string> a = {"render", std::string(SLUICE_SOURCE_DIR) + "/scenes/column.json", "-o", out.string(),
                                 "--set", "spacing=0.04", "--set", "time.duration=0.2", "--resolution", "160x90", "-q"};
@@ -433,15 +414,12 @@ std::vector<std::string> tiny_render(const fs::path& out, const std::vector<std:
 
 // One line "sluice: ..." naming the flag, its value and what is allowed; exit 1.
 void expect_flag_error(const std::vector<std::string>& extra, const std::vector<std::string>& words) {
-  const fs::path dir = fs::temp_directory_path() / "sluice_render_flags";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const RunResult r = run_sluice(tiny_render(dir / "out", extra), dir);
+  const test::CaseDir dir;
+  const test::Result r = test::run_sluice(dir, tiny_render(dir.work() / "out", extra));
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_EQ(r.err.rfind("sluice: ", 0), 0u) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   for (const std::string& w : words) EXPECT_NE(r.err.find(w), std::string::npos) << "no '" << w << "' in: " << r.err;
-  fs::remove_all(dir);
 }
 
 TEST(RenderFlags, BadValuesAreOneLineNamingTheFlag) {
@@ -459,12 +437,11 @@ TEST(RenderFlags, BadValuesAreOneLineNamingTheFlag) {
 }
 
 TEST(RenderFlags, GifAndWebmWithAFramePattern) {
-  const fs::path dir = fs::temp_directory_path() / "sluice_render_video";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  RunResult r = run_sluice(tiny_render(dir / "gif", {"--format", "gif", "--frame-pattern", "shot-%03d.png", "--overlay",
-                                               "time", "--title", "Column", "--particle-scale", "1.5"}),
-                     dir);
+  const test::CaseDir cases;
+  const fs::path dir = cases.work();
+  test::Result r = test::run_sluice(cases, tiny_render(dir / "gif", {"--format", "gif", "--frame-pattern", "shot-%03d.png",
+                                                                   "--overlay", "time", "--title", "Column",
+                                                                   "--particle-scale", "1.5"}));
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir / "gif" / "frames" / "shot-000.png"));
   EXPECT_TRUE(fs::exists(dir / "gif" / "frames" / "shot-004.png"));
@@ -473,14 +450,13 @@ TEST(RenderFlags, GifAndWebmWithAFramePattern) {
   char magic[6] = {};
   gif.read(magic, 6);
   EXPECT_EQ(std::string(magic, 6), "GIF89a");
-  r = run_sluice(tiny_render(dir / "webm", {"--format", "webm", "--crf", "40"}), dir);
+  r = test::run_sluice(cases, tiny_render(dir / "webm", {"--format", "webm", "--crf", "40"}));
   ASSERT_EQ(r.status, 0) << r.err;
   std::ifstream webm(dir / "webm" / "column.webm", std::ios::binary);
   unsigned char ebml[4] = {};
   webm.read(reinterpret_cast<char*>(ebml), 4);
   EXPECT_EQ(ebml[0], 0x1A);  // the EBML (Matroska/WebM) signature 1A 45 DF A3
   EXPECT_EQ(ebml[1], 0x45);
-  fs::remove_all(dir);
 }
 
 TEST(RenderCompare, CountsPixelsBeyondTolerance) {

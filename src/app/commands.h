@@ -13,7 +13,7 @@ struct SimulateOptions {
   double duration = 0;     // > 0 overrides time.duration
   int threads = 0;         // 0: OpenMP default
   std::vector<std::string> set;
-  std::vector<std::string> exports;  // csv, vtk
+  std::vector<std::string> exports;  // csv, vtk (empty: the scene's output.export)
   bool quiet = false;
   bool overwrite = false;  // replace a previous run in the output directory
   int checkpoint_every = 0;  // frames between checkpoints (0: none)
@@ -52,6 +52,7 @@ struct RenderOptions {
   std::string format = "mp4";    // video container: mp4 | webm | gif
   int crf = -1;                  // video quality (< 0: the format's default)
   std::string frame_pattern = "frame_%05d.png";  // the PNG frames' names (printf, one %d)
+  std::vector<std::string> exports;  // csv, vtk (empty: the scene's output.export)
   int threads = 0;
   std::vector<std::string> set;
   bool quiet = false;
@@ -73,10 +74,16 @@ int run_still(const StillOptions& o);
 
 struct CompareOptions {
   std::string a, b;
-  int tolerance = 0;          // allowed channel difference per pixel
-  double max_fraction = 0;    // share of pixels allowed beyond the tolerance
-  std::string diff;           // diff image path (written when the images differ)
+  std::string preset = "strict";     // strict | tests (render::kStrictRule, kTestsRule)
+  int tolerance = -1;                // allowed channel difference per pixel; < 0: the preset's
+  double max_fraction = -1;          // share of compared pixels allowed beyond it; < 0: the preset's
+  std::string mask;                  // PNG of the images' size: its non-black pixels are ignored
+  std::vector<std::string> regions;  // "x,y,w,h": ignored rectangles
+  std::string diff;                  // diff image path (written when the images differ)
 };
+// The exit status of `sluice compare`, for CI scripts (docs/cli.md). A FlagError is a
+// usage error there; an ImageReadError or OutputError an I/O error.
+enum CompareExit : int { kCompareSame = 0, kCompareDifferent = 1, kCompareUsage = 2, kCompareIo = 3, kCompareSize = 4 };
 int run_compare(const CompareOptions& o);
 
 struct BenchRenderOptions {

@@ -50,7 +50,17 @@ int flag_error(const CLI::App& app, const CLI::ParseError& e) {
   const auto used = app.get_subcommands();
   const std::string help = used.empty() ? "sluice --help" : "sluice " + used.front()->get_name() + " --help";
   std::fprintf(stderr, "sluice: %s (see %s)\n", what.c_str(), help.c_str());
-  return 1;
+  // compare's exit status tells a CI script a usage mistake from images that differ.
+  return !used.empty() && used.front()->get_name() == "compare" ? sluice::app::kCompareUsage : 1;
+}
+
+// --export of `simulate` and `render`: the particle exports at every frame (io/export.h),
+// in place of the scene's output.export.
+void add_export_option(CLI::App* cmd, std::vector<std::string>& exports) {
+  cmd->add_option("--export", exports, "Particle exports at every frame: csv, vtk (VTK XML .vtp and a ParaView .pvd); "
+                                       "default: the scene's output.export")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"csv", "vtk"}));
 }
 
 // --checkpoint-every and --resume of `simulate` and `render`. With --resume the scene and
@@ -93,9 +103,7 @@ int main(int argc, char** argv) {
   simulate->add_option("--threads", sim.threads, "OpenMP threads (default: all cores)")->check(threads);
   simulate->add_option("--set", sim.set, "Override a scene value: path=value, e.g. solver.tolerance=0.05")
       ->take_all();
-  simulate->add_option("--export", sim.exports, "Particle exports at every frame: csv, vtk")
-      ->delimiter(',')
-      ->check(CLI::IsMember({"csv", "vtk"}));
+  add_export_option(simulate, sim.exports);
   simulate->add_flag("-q,--quiet", sim.quiet, "No progress output");
   simulate->add_flag("--overwrite", sim.overwrite, "Replace a previous run in the output directory");
   add_checkpoint_options(simulate, sim.checkpoint_every, sim.resume, sim.scene);
@@ -153,6 +161,7 @@ int main(int argc, char** argv) {
   render->add_option("--crf", ren.crf, "Video quality, lower is better: mp4 0-51 (default 18), webm 0-63 (default 31)")
       ->check(number_check(true, 0, false, 63));
   render->add_option("--frame-pattern", ren.frame_pattern, "Names of the PNG frames, one %d or %0Nd (default frame_%05d.png)");
+  add_export_option(render, ren.exports);
   render->add_option("--threads", ren.threads, "OpenMP threads (default: all cores)")->check(threads);
   render->add_option("--set", ren.set, "Override a scene value: path=value")->take_all();
   render->add_flag("-q,--quiet", ren.quiet, "No progress output");
@@ -190,13 +199,19 @@ int main(int argc, char** argv) {
   montagecmd->add_option("--threads", mont.threads, "OpenMP threads")->check(threads);
 
   CompareOptions cmp;
-  CLI::App* compare = app.add_subcommand("compare", "Compare two PNG images; exit 0 when they match, 1 otherwise");
+  CLI::App* compare = app.add_subcommand(
+      "compare", "Compare two PNG images; exit 0 when they match, 1 when they differ, 2 usage, 3 unreadable, 4 sizes differ");
   compare->add_option("a", cmp.a, "First PNG")->required();
   compare->add_option("b", cmp.b, "Second PNG")->required();
-  compare->add_option("--tolerance", cmp.tolerance, "Channel difference a pixel may have (default 0)")
+  compare->add_option("--preset", cmp.preset, "strict: 0 levels, 0 % of pixels (default); tests: sluice's image tests' rule, 8 levels, 0.5 %")
+      ->check(CLI::IsMember({"strict", "tests"}));
+  compare->add_option("--tolerance", cmp.tolerance, "Channel difference a pixel may have, 0-255 levels (default: the preset's)")
       ->check(CLI::Range(0, 255));
-  compare->add_option("--max-fraction", cmp.max_fraction, "Share of pixels allowed beyond the tolerance (default 0)")
+  compare->add_option("--max-fraction", cmp.max_fraction, "Share of compared pixels allowed beyond the tolerance, 0-1 (default: the preset's)")
       ->check(number_check(false, 0, false, 1));  // CLI::Range lets nan through
+  compare->add_option("--mask", cmp.mask, "PNG of the images' size: its non-black pixels are ignored");
+  compare->add_option("--region", cmp.regions, "Ignore the rectangle x,y,w,h (pixels from the top left; repeatable)")
+      ->allow_extra_args(false);  // one rectangle per --region: A.png and B.png may follow
   compare->add_option("--diff", cmp.diff, "Write a diff image here when pixels differ");
 
   BenchRenderOptions brender;
@@ -301,7 +316,10 @@ int main(int argc, char** argv) {
   } catch (const sluice::render::ImageReadError& e) {
     // compare's inputs: a missing or broken image, never mistaken for a missing GPU (6)
     std::fprintf(stderr, "sluice: input image error: %s\n", e.what());
-    return 8;
+    return kCompareIo;
+  } catch (const sluice::view::FlagError& e) {
+    std::fprintf(stderr, "sluice: error: %s\n", e.what());
+    return *compare ? kCompareUsage : 1;
   } catch (const OutOfMemory& e) {
     std::fprintf(stderr, "sluice: out of memory %s\n", e.what());
     return 1;

@@ -2,11 +2,14 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
 #include "app/run.h"
+#include "io/export.h"
 #include "io/output.h"
+#include "render/video.h"
 
 namespace sluice::app {
 
@@ -25,11 +28,20 @@ bool holds_run_output(const fs::path& entry) {
   return !fs::is_empty(entry, ec) && !ec;
 }
 
-// What a run writes inside frames/ and particles/: frame_NNNNN.{png,csv,vtk} and their
-// temporary names. Nothing else there is removed.
-bool is_frame_file(const std::string& name) {
-  return name.starts_with("frame_") && (name.ends_with(".png") || name.ends_with(".csv") || name.ends_with(".vtk") ||
-                                        name.ends_with(".tmp"));
+bool has_digit(const std::string& name) {
+  return std::any_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// What a run writes inside `folder` (frames/ or particles/), with the temporary names:
+// in frames/ a PNG whose name holds a frame number (whatever --frame-pattern named it),
+// in particles/ frame_NNNNN.csv, .vtp (.vtk of older versions) and the collection.
+// Nothing else there is removed.
+bool is_frame_file(const std::string& folder, std::string name) {
+  if (name.ends_with(".tmp")) name.resize(name.size() - 4);
+  if (folder == "frames") return name.ends_with(".png") && has_digit(name);
+  if (folder != "particles") return false;  // checkpoints/: the Checkpointer clears its own
+  return name == kCollectionFile ||
+         (name.starts_with("frame_") && (name.ends_with(".csv") || name.ends_with(".vtp") || name.ends_with(".vtk")));
 }
 
 void remove_entry(const fs::path& p) {
@@ -46,8 +58,9 @@ void remove_previous(const fs::path& entry) {
     remove_entry(entry);
     return;
   }
+  const std::string folder = entry.filename().string();
   for (const fs::directory_entry& e : fs::directory_iterator(entry, ec))
-    if (is_frame_file(e.path().filename().string())) remove_entry(e.path());
+    if (is_frame_file(folder, e.path().filename().string())) remove_entry(e.path());
   if (ec) throw OutputError(entry.string() + ": cannot list the previous run's files: " + ec.message());
   if (fs::is_empty(entry, ec)) fs::remove(entry, ec);
 }
@@ -62,7 +75,7 @@ void refuse_removing_input(const fs::path& entry, const std::string& input) {
   const fs::path e = fs::weakly_canonical(entry, ec);
   if (ec) return;
   const bool inside = fs::is_directory(fs::symlink_status(entry, ec)) && in.parent_path() == e &&
-                      is_frame_file(in.filename().string());
+                      is_frame_file(entry.filename().string(), in.filename().string());
   if (in == e || inside)
     throw OutputError(entry.string() + ": --overwrite would delete the scene file " + input +
                       " (it is a previous run's file there); move the scene out of the output directory or choose another -o");
@@ -78,8 +91,16 @@ void check_writable(const fs::path& dir) {
 }  // namespace
 
 std::vector<std::string> previous_run_files(const std::string& scene_name) {
-  return {"stats.csv",   "stats.csv.tmp", "summary.json", "summary.json.tmp",           "frames",
-          "particles",   "ffmpeg.log",    scene_name + ".mp4", scene_name + ".mp4.tmp.mp4", "checkpoints"};
+  std::vector<std::string> names = {"stats.csv", "stats.csv.tmp", "summary.json", "summary.json.tmp", "frames",
+                                    "particles", "ffmpeg.log",    "checkpoints"};
+  for (const render::VideoFormat f : {render::VideoFormat::mp4, render::VideoFormat::webm, render::VideoFormat::gif}) {
+    render::VideoJob video;
+    video.format = f;
+    video.output = scene_name + "." + render::extension(f);
+    names.push_back(video.output);
+    names.push_back(render::temporary_output(video));
+  }
+  return names;
 }
 
 void prepare_output_directory(const fs::path& dir, bool overwrite, const std::string& scene_name, const std::string& input) {

@@ -1,5 +1,5 @@
-// `sluice render`, `still`, `compare` and `bench-render`: the simulation's frames as
-// images through the headless renderer, the MP4, image comparison, renderer timing.
+// `sluice render`, `still` and `bench-render`: the simulation's frames as images through
+// the headless renderer, the video, renderer timing.
 #include <omp.h>
 
 #include <algorithm>
@@ -140,6 +140,7 @@ int run_render(const RenderOptions& given) {
   std::vector<std::string> overrides = o.set;
   if (o.duration > 0) overrides.push_back(number_override("time.duration", o.duration));
   if (o.fps > 0) overrides.push_back(number_override("time.fps", o.fps));
+  if (!o.exports.empty()) overrides.push_back(export_override(o.exports));
   Scene scene = load_scene(o.scene, overrides);
 
   Index first = 0, last = std::numeric_limits<Index>::max();
@@ -185,6 +186,11 @@ int run_render(const RenderOptions& given) {
   Image image;
   Index rendered = 0;
   double ms_render = 0;
+  catch_interrupts();
+  RunControl control = make_run_control(o.resume, o.checkpoint_every, run_record(o), dir, scene, o.quiet);
+  control.command = "render";
+  // Exports of the frames rendered, as `simulate` writes them.
+  ParticleExporter exporter = make_exporter(scene, dir, control, first, last);
   auto on_frame = [&](const Simulation& sim, Index frame, const StepStats* st) {
     if (frame < first || frame > last) return;
     const auto t0 = std::chrono::steady_clock::now();
@@ -193,10 +199,8 @@ int run_render(const RenderOptions& given) {
     writer.write((frames_dir / frame_file(o.frame_pattern, frame)).string(), image);
     ms_render += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     ++rendered;
+    exporter.write(frame, sim.time(), sim.fluid(), sim.boundary());
   };
-  catch_interrupts();
-  RunControl control = make_run_control(o.resume, o.checkpoint_every, run_record(o), dir, scene, o.quiet);
-  control.command = "render";
   // A resumed run's PNGs before the checkpoint's frame were written by the earlier run.
   const long earlier =
       control.resume ? std::max<long>(0, std::min<long>(last, control.resume->checkpoint.state.frame - 1) - first + 1) : 0;
@@ -261,32 +265,6 @@ int run_still(const StillOptions& o) {
   write_png(out.string(), image);
   std::fprintf(stderr, "sluice: t = %.4f s after %ld steps: wrote %s\n", sim.time(), sim.steps(), out.c_str());
   return 0;
-}
-
-int run_compare(const CompareOptions& o) {
-  // The diff image must not replace an input (compare --diff A.png A.png B.png).
-  if (!o.diff.empty()) {
-    std::error_code ec;
-    for (const std::string& in : {o.a, o.b})
-      if (fs::equivalent(o.diff, in, ec))
-        throw OutputError(o.diff + ": --diff names the input image " + in + "; choose another path for the diff image");
-    check_png_path(o.diff);
-  }
-  const Image a = read_png(o.a), b = read_png(o.b);
-  const CompareResult r = compare_images(a, b, o.tolerance, o.max_fraction);
-  if (!r.same_size) {
-    std::printf("%s is %dx%d, %s is %dx%d: sizes differ\n", o.a.c_str(), a.width, a.height, o.b.c_str(), b.width,
-                b.height);
-    return 1;
-  }
-  std::printf("%s vs %s: %ld of %ld pixels (%.4f%%) differ by more than %d levels; largest difference %d: %s\n",
-              o.a.c_str(), o.b.c_str(), r.differing, r.total, 100.0 * r.differing / std::max(1L, r.total), o.tolerance,
-              r.max_difference, r.passed ? "match" : "DIFFER");
-  if (!o.diff.empty() && r.differing > 0) {
-    write_png(o.diff, diff_image(a, b, o.tolerance));
-    std::printf("diff image: %s\n", o.diff.c_str());
-  }
-  return r.passed ? 0 : 1;
 }
 
 int run_bench_render(const BenchRenderOptions& o) {

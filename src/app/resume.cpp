@@ -83,6 +83,7 @@ json run_record(const RenderOptions& o) {
           {"format", o.format},
           {"crf", o.crf},
           {"frame_pattern", o.frame_pattern},
+          {"exports", o.exports},
           {"set", o.set},
           {"checkpoint_every", o.checkpoint_every}};
 }
@@ -129,6 +130,7 @@ RenderOptions resumed_options(const RenderOptions& given) {
     o.format = r.value("format", std::string("mp4"));
     o.crf = r.value("crf", -1);
     o.frame_pattern = r.value("frame_pattern", std::string("frame_%05d.png"));
+    o.exports = r.value("exports", std::vector<std::string>());
     o.set = r.at("set").get<std::vector<std::string>>();
     if (o.checkpoint_every <= 0) o.checkpoint_every = r.at("checkpoint_every").get<int>();
   });

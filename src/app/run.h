@@ -4,11 +4,13 @@
 // every frame time.
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "io/checkpoint.h"
+#include "io/export.h"
 #include "scene/scene.h"
 #include "sim/simulation.h"
 
@@ -47,6 +49,16 @@ struct FrameOutput {
   std::function<void()> wait;     // finishes the writes in flight; throws their error
   std::function<long()> written;  // frames written so far
 };
+
+// `--export csv,vtk` as a scene override: it replaces output.export, so that the run
+// exports what summary.json's parameters say.
+std::string export_override(const std::vector<std::string>& formats);
+
+// The scene's output.export into DIR/particles. For a resumed run, the frames from
+// `first` to `last` before the checkpoint's are listed in the collection, as the run
+// that wrote them left them. Throws OutputError.
+ParticleExporter make_exporter(const Scene& scene, const std::filesystem::path& dir, const RunControl& control,
+                               Index first = 0, Index last = std::numeric_limits<Index>::max());
 
 // Throws SimulationUnstable (after renaming stats.csv.tmp to stats.csv and writing
 // summary.json with "status": "unstable"; the message says what is kept where). Other

@@ -16,6 +16,7 @@
 #include "app/resume.h"
 #include "app/run.h"
 #include "app/wait_policy.h"
+#include "io/export.h"
 #include "io/output.h"
 #include "scene/scene.h"
 #include "sim/simulation.h"
@@ -39,12 +40,6 @@ namespace {
 // The command that continues an interrupted run, for summary.json.
 std::string resume_command(const std::string& command, const fs::path& dir) {
   return "sluice " + command + " --resume " + dir.string();
-}
-
-std::string frame_name(Index frame, const char* ext) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "frame_%05d.%s", frame, ext);
-  return buf;
 }
 
 // "0:01:23", or "--:--" while there is no estimate yet.
@@ -104,6 +99,22 @@ void check_memory(const Scene& scene) {
                      " of memory; the limit is " + mib(limit) + " (" + what + "); increase /spacing");
 }
 
+std::string export_override(const std::vector<std::string>& formats) {
+  return "output.export=" + nlohmann::json(formats).dump();
+}
+
+ParticleExporter make_exporter(const Scene& scene, const fs::path& dir, const RunControl& control, Index first,
+                               Index last) {
+  ParticleExporter exporter(dir / "particles", scene.output.export_formats);
+  if (!control.resume) return exporter;
+  // The frames before the checkpoint's were written by the earlier run, at the times
+  // Simulation::step lands on: frame / fps, the last one at the duration.
+  const Index resumed = control.resume->checkpoint.state.frame;
+  for (Index k = first; k < resumed && k <= last; ++k)
+    exporter.add_earlier(k, std::min(static_cast<double>(k) / scene.time.fps, scene.time.duration));
+  return exporter;
+}
+
 void make_directory(const fs::path& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -115,24 +126,18 @@ int run_simulate(const SimulateOptions& given) {
   set_threads(o.threads);
   std::vector<std::string> overrides = o.set;
   if (o.duration > 0) overrides.push_back(number_override("time.duration", o.duration));
+  if (!o.exports.empty()) overrides.push_back(export_override(o.exports));
   const Scene scene = load_scene(o.scene, overrides);
-  const std::vector<std::string> exports = o.exports.empty() ? scene.output.export_formats : o.exports;
   const fs::path dir = o.output_dir.empty() ? fs::path(scene.output.directory) : fs::path(o.output_dir);
   // A resumed run continues the run in `dir`; a fresh one must not mix with an old one.
   if (o.resume.empty()) prepare_output_directory(dir, o.overwrite, scene.name, scene.file);
-  const bool want_csv = std::find(exports.begin(), exports.end(), "csv") != exports.end();
-  const bool want_vtk = std::find(exports.begin(), exports.end(), "vtk") != exports.end();
-  if (want_csv || want_vtk) make_directory(dir / "particles");
-
-  const fs::path particles = dir / "particles";
-  auto export_frame = [&](const Simulation& sim, Index frame, const StepStats*) {
-    if (want_csv) write_file_atomic((particles / frame_name(frame, "csv")).string(), particles_csv(sim.fluid()));
-    if (want_vtk)
-      write_file_atomic((particles / frame_name(frame, "vtk")).string(), particles_vtk(sim.fluid(), sim.time()));
-  };
   catch_interrupts();
   RunControl control = make_run_control(o.resume, o.checkpoint_every, run_record(o), dir, scene, o.quiet);
   control.command = "simulate";
+  ParticleExporter exporter = make_exporter(scene, dir, control);
+  auto export_frame = [&](const Simulation& sim, Index frame, const StepStats*) {
+    exporter.write(frame, sim.time(), sim.fluid(), sim.boundary());
+  };
   run_scene(scene, dir, o.quiet, export_frame, control);
   return 0;
 }

@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <sstream>
 
 namespace sluice {
 
@@ -64,48 +63,6 @@ void StatsCsv::write(const StepStats& s) {
 
 void write_file_atomic(const std::string& path, const std::string& text) {
   write_bytes_atomic(path, text.data(), text.size());
-}
-
-namespace {
-// Indices of fluid particles sorted by their initial id, so exports keep one order.
-std::vector<Index> by_id(const FluidParticles& f) {
-  std::vector<Index> order(f.id.size());
-  for (Index k = 0; k < f.size(); ++k) order[f.id[k]] = k;
-  return order;
-}
-}  // namespace
-
-std::string particles_csv(const FluidParticles& f) {
-  std::string s = "id,x,y,vx,vy,pressure,density\n";
-  s.reserve(s.size() + static_cast<size_t>(f.size()) * 96);
-  char line[256];
-  for (Index k : by_id(f)) {
-    std::snprintf(line, sizeof line, "%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", f.id[k], f.x[k].x(), f.x[k].y(),
-                  f.v[k].x(), f.v[k].y(), f.p[k], f.rho[k]);
-    s += line;
-  }
-  return s;
-}
-
-std::string particles_vtk(const FluidParticles& f, double time) {
-  const Index n = f.size();
-  const std::vector<Index> order = by_id(f);
-  std::ostringstream os;
-  os.precision(9);
-  os << "# vtk DataFile Version 3.0\nsluice fluid particles t=" << time << "\nASCII\nDATASET POLYDATA\n";
-  os << "POINTS " << n << " double\n";
-  for (Index k : order) os << f.x[k].x() << ' ' << f.x[k].y() << " 0\n";
-  os << "VERTICES " << n << ' ' << 2 * n << '\n';
-  for (Index i = 0; i < n; ++i) os << "1 " << i << '\n';
-  os << "POINT_DATA " << n << "\nVECTORS velocity double\n";
-  for (Index k : order) os << f.v[k].x() << ' ' << f.v[k].y() << " 0\n";
-  os << "SCALARS pressure double 1\nLOOKUP_TABLE default\n";
-  for (Index k : order) os << f.p[k] << '\n';
-  os << "SCALARS density double 1\nLOOKUP_TABLE default\n";
-  for (Index k : order) os << f.rho[k] << '\n';
-  os << "SCALARS id int 1\nLOOKUP_TABLE default\n";
-  for (Index k : order) os << f.id[k] << '\n';
-  return os.str();
 }
 
 void RunTotals::add(const StepStats& s) {

@@ -1,6 +1,6 @@
 #pragma once
-// Frame sinks of a simulation run that write files: per-step statistics (CSV), the
-// run summary (JSON) and particle exports (CSV, VTK). Files that are written at once
+// Frame sinks of a simulation run that write files: per-step statistics (CSV) and the
+// run summary (JSON); particle exports are in io/export.h. Files that are written at once
 // go to a temporary name first and are renamed when complete.
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -42,11 +42,6 @@ class StatsCsv {
 
 // Writes `text` to `path` through `path.tmp` and a rename (write_bytes_atomic).
 void write_file_atomic(const std::string& path, const std::string& text);
-
-// One row per fluid particle in the scene's initial order: id,x,y,vx,vy,pressure,density.
-std::string particles_csv(const FluidParticles& f);
-// The same as a legacy ASCII VTK PolyData file (points with vertex cells and point data).
-std::string particles_vtk(const FluidParticles& f, double time);
 
 // Running totals of a run for summary.json.
 struct RunTotals {

@@ -84,21 +84,40 @@ int pixel_difference(const Image& a, const Image& b, size_t i) {
 }
 }  // namespace
 
-CompareResult compare_images(const Image& a, const Image& b, int tolerance, double max_fraction) {
+CompareResult compare_images(const Image& a, const Image& b, int tolerance, double max_fraction,
+                             const PixelMask& ignore) {
   CompareResult r;
   r.same_size = a.width == b.width && a.height == b.height;
   if (!r.same_size) return r;
-  r.total = static_cast<long>(a.width) * a.height;
-  for (size_t i = 0; i < static_cast<size_t>(r.total); ++i) {
-    const int d = pixel_difference(a, b, i);
-    r.max_difference = std::max(r.max_difference, d);
-    if (d > tolerance) ++r.differing;
-  }
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      const size_t i = static_cast<size_t>(y) * a.width + x;
+      if (!ignore.empty() && ignore[i]) {
+        ++r.ignored;
+        continue;
+      }
+      ++r.total;
+      const int d = pixel_difference(a, b, i);
+      if (d > r.max_difference) {
+        r.max_difference = d;
+        r.max_x = x;
+        r.max_y = y;
+      }
+      if (d <= tolerance) continue;
+      ++r.differing;
+      if (r.box_x0 < 0) {
+        r.box_x0 = r.box_x1 = x;
+        r.box_y0 = r.box_y1 = y;
+      }
+      r.box_x0 = std::min(r.box_x0, x);
+      r.box_x1 = std::max(r.box_x1, x);
+      r.box_y1 = y;  // rows come in order
+    }
   r.passed = static_cast<double>(r.differing) <= max_fraction * static_cast<double>(r.total);
   return r;
 }
 
-Image diff_image(const Image& a, const Image& b, int tolerance) {
+Image diff_image(const Image& a, const Image& b, int tolerance, const PixelMask& ignore) {
   Image out(a.width, a.height);
   const bool same = a.width == b.width && a.height == b.height;
   for (size_t i = 0; i < static_cast<size_t>(a.width) * a.height; ++i) {
@@ -106,7 +125,10 @@ Image diff_image(const Image& a, const Image& b, int tolerance) {
     const int grey = 192 + (p[0] + p[1] + p[2]) / 12;  // faded context: 192..255
     const int d = same ? pixel_difference(a, b, i) : 255;
     std::uint8_t* q = &out.rgb[i * 3];
-    if (d > tolerance) {
+    if (!ignore.empty() && ignore[i]) {
+      q[0] = q[1] = static_cast<std::uint8_t>(grey - 40);
+      q[2] = static_cast<std::uint8_t>(grey);
+    } else if (d > tolerance) {
       q[0] = 255;
       q[1] = q[2] = static_cast<std::uint8_t>(std::max(0, 160 - d * 2));
     } else {

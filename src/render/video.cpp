@@ -110,7 +110,7 @@ void encode_video(const VideoJob& job) {
                      "; install it, e.g. apt-get install ffmpeg): " + cmd);
   }
   int status = 0;
-  const std::string partial = job.output + ".tmp.mp4";
+  const std::string partial = temporary_output(job);
   // Polled, not a blocking wait: a signal to sluice must stop ffmpeg too, not orphan it.
   bool stopped = false;
   while (true) {
