@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "app/thread_governor.h"
 #include "test_process.h"
 
 namespace sluice {
@@ -54,6 +55,44 @@ TEST(Threads, UsersWaitPolicyIsKept) {
   }
   ScopedEnv spin("GOMP_SPINCOUNT", "50000"), policy("OMP_WAIT_POLICY", nullptr);
   EXPECT_EQ(recorded_wait_policy(), "GOMP_SPINCOUNT=50000");
+}
+
+// Steps fed to the governor with a made-up cost per thread count: it keeps the count that
+// is faster and follows when the machine changes.
+struct FakeMachine {
+  double seconds_on_1, seconds_on_2;
+  int run(app::ThreadGovernor& g, int steps) {
+    int on_1 = 0;
+    for (int k = 0; k < steps; ++k) {
+      g.before_step();
+      on_1 += g.threads() == 1;
+      g.after_step(g.threads() == 1 ? seconds_on_1 : seconds_on_2, 3);
+    }
+    return on_1;
+  }
+};
+
+TEST(Threads, GovernorKeepsTheFasterCount) {
+  const int saved = omp_get_max_threads();
+  app::ThreadGovernor g(2, false);
+  FakeMachine idle{1.0, 0.6};
+  EXPECT_LT(idle.run(g, 2000), 100);  // probes only, fewer as nothing changes
+  EXPECT_EQ(g.threads(), 2);
+  FakeMachine busy{1.0, 1.5};  // another program took a core
+  EXPECT_GT(busy.run(g, 2000), 1900);
+  EXPECT_EQ(g.threads(), 1);
+  EXPECT_EQ(g.switches(), 1);
+  EXPECT_GT(idle.run(g, 2000), 0);  // back to 2 threads once 1 is slower than 2 again
+  EXPECT_EQ(g.threads(), 2);
+  omp_set_num_threads(saved);
+}
+
+TEST(Threads, GovernorLeavesAFixedCountAlone) {
+  app::ThreadGovernor g(2, /*fixed=*/true);
+  FakeMachine busy{1.0, 1.5};
+  busy.run(g, 500);
+  EXPECT_FALSE(g.active());
+  EXPECT_EQ(g.threads(), 0);
 }
 
 }  // namespace

@@ -188,6 +188,7 @@ int run_render(const RenderOptions& given) {
   double ms_render = 0;
   catch_interrupts();
   RunControl control = make_run_control(o.resume, o.checkpoint_every, run_record(o), dir, scene, o.quiet);
+  control.threads_fixed = o.threads > 0 || std::getenv("OMP_NUM_THREADS") != nullptr;
   control.command = "render";
   // Exports of the frames rendered, as `simulate` writes them.
   ParticleExporter exporter = make_exporter(scene, dir, control, first, last);

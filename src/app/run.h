@@ -41,6 +41,9 @@ struct RunControl {
   std::optional<LoadedCheckpoint> resume;  // continue from this checkpoint
   nlohmann::json record;  // the command's flags, written to DIR/checkpoints/run.json for --resume (null: none)
   std::string command = "simulate";  // for the resume hint of an interrupted run
+  // --threads or OMP_NUM_THREADS fixed the thread count; otherwise a ThreadGovernor
+  // chooses it between steps.
+  bool threads_fixed = false;
 };
 
 // A frame sink that writes in the background (render's PNG encoding): run_scene waits for

@@ -15,6 +15,7 @@
 #include "app/output_dir.h"
 #include "app/resume.h"
 #include "app/run.h"
+#include "app/thread_governor.h"
 #include "app/wait_policy.h"
 #include "io/export.h"
 #include "io/output.h"
@@ -133,6 +134,7 @@ int run_simulate(const SimulateOptions& given) {
   if (o.resume.empty()) prepare_output_directory(dir, o.overwrite, scene.name, scene.file);
   catch_interrupts();
   RunControl control = make_run_control(o.resume, o.checkpoint_every, run_record(o), dir, scene, o.quiet);
+  control.threads_fixed = o.threads > 0 || std::getenv("OMP_NUM_THREADS") != nullptr;
   control.command = "simulate";
   ParticleExporter exporter = make_exporter(scene, dir, control);
   auto export_frame = [&](const Simulation& sim, Index frame, const StepStats*) {
@@ -209,8 +211,13 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
   // stats.csv under its real name first, then summary.json: a stats.csv without a
   // summary.json is a run that was killed. A stats.csv that could not be completed (full
   // disk) is kept with the rows it has, and the summary says the run failed.
+  ThreadGovernor governor(omp_get_max_threads(), control.threads_fixed);
   auto finish_files = [&](std::string status, std::string message) {
     totals.wall_seconds = elapsed();
+    if (governor.active())
+      summary["thread_governor"] = {{"switches", governor.switches()},
+                                    {"steps_on_1_thread", governor.steps_on_one()},
+                                    {"steps_on_all", governor.steps_on_max()}};
     std::exception_ptr csv_error;
     try {
       csv.finish();
@@ -260,7 +267,11 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     eta_estimate.add(elapsed(), sim.time());
     while (!sim.finished()) {
       stop_if_interrupted();
+      governor.before_step();
+      const auto step_start = std::chrono::steady_clock::now();
       const StepStats st = sim.step();
+      governor.after_step(std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count(),
+                          st.iterations);
       csv.write(st);
       totals.add(st);
       if (st.frame < 0) continue;
