@@ -36,6 +36,12 @@ struct BenchOptions {
   std::string output_dir;            // default renders/bench/<scene name>
   std::string jobs;                  // write the runs' command lines here instead of running them
   std::vector<std::string> collect;  // merge the bench.csv files of these directories
+  // End-to-end mode: `render` of one scene (default scenes/dam_break_130k.json) timed as a
+  // whole and split (simulation, drawing, PNG, video); end_to_end.csv in `output_dir`
+  // (default renders/bench/end_to_end). duration 0: 5 s.
+  bool end_to_end = false;
+  double fps = 60;
+  std::string resolution = "1920x1080";
 };
 int run_bench(const BenchOptions& o);
 

@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
   simulate->add_option("-o,--output", sim.output_dir, "Output directory (default: the scene's output.directory)");
   simulate->add_option("--duration", sim.duration, "Simulated seconds (overrides time.duration)")
       ->check(positive);
-  simulate->add_option("--threads", sim.threads, "OpenMP threads (default: all cores)")->check(threads);
+  simulate->add_option("--threads", sim.threads, "OpenMP threads (default: 1 or all cores, chosen by measuring while it runs)")->check(threads);
   simulate->add_option("--set", sim.set, "Override a scene value: path=value, e.g. solver.tolerance=0.05")
       ->take_all();
   add_export_option(simulate, sim.exports);
@@ -123,6 +123,10 @@ int main(int argc, char** argv) {
       ->check(positive);
   benchcmd->add_option("-o,--output", bench.output_dir, "Sweep: directory for bench.csv, bench.md, bench.png (default renders/bench/<scene>)");
   benchcmd->add_option("--jobs", bench.jobs, "Sweep: write one command line per run to this file instead of running");
+  benchcmd->add_flag("--end-to-end", bench.end_to_end,
+                     "Time `render` of one scene (default scenes/dam_break_130k.json, 5 s, 60 fps, 1920x1080) as a whole, split into simulation, drawing, PNG and video");
+  benchcmd->add_option("--fps", bench.fps, "End-to-end: frames per second (default 60)")->check(positive);
+  benchcmd->add_option("--resolution", bench.resolution, "End-to-end: WxH (default 1920x1080)");
   benchcmd->add_option("--collect", bench.collect, "Merge the bench.csv of these directories into -o DIR")->take_all();
 
   // Image flags shared by `render` and `still`.
@@ -162,7 +166,7 @@ int main(int argc, char** argv) {
       ->check(number_check(true, 0, false, 63));
   render->add_option("--frame-pattern", ren.frame_pattern, "Names of the PNG frames, one %d or %0Nd (default frame_%05d.png)");
   add_export_option(render, ren.exports);
-  render->add_option("--threads", ren.threads, "OpenMP threads (default: all cores)")->check(threads);
+  render->add_option("--threads", ren.threads, "OpenMP threads (default: 1 or all cores, chosen by measuring while it runs)")->check(threads);
   render->add_option("--set", ren.set, "Override a scene value: path=value")->take_all();
   render->add_flag("-q,--quiet", ren.quiet, "No progress output");
   render->add_flag("--overwrite", ren.overwrite, "Replace a previous run in the output directory");

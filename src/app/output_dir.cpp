@@ -92,7 +92,7 @@ void check_writable(const fs::path& dir) {
 
 std::vector<std::string> previous_run_files(const std::string& scene_name) {
   std::vector<std::string> names = {"stats.csv", "stats.csv.tmp", "summary.json", "summary.json.tmp", "frames",
-                                    "particles", "ffmpeg.log",    "checkpoints"};
+                                    "particles", "ffmpeg.log",    "checkpoints",      "timing.json",      "timing.json.tmp"};
   for (const render::VideoFormat f : {render::VideoFormat::mp4, render::VideoFormat::webm, render::VideoFormat::gif}) {
     render::VideoJob video;
     video.format = f;

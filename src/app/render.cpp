@@ -91,22 +91,49 @@ class FrameWriter {
  public:
   void write(std::string path, Image img) {
     wait();
-    pending_ = std::async(std::launch::async, [path = std::move(path), img = std::move(img)] { write_png(path, img); });
+    pending_ = std::async(std::launch::async, [path = std::move(path), img = std::move(img)] {
+      const auto t0 = std::chrono::steady_clock::now();
+      write_png(path, img);
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    });
   }
   void wait() {
     if (!pending_.valid()) return;
-    pending_.get();
+    const auto t0 = std::chrono::steady_clock::now();
+    encode_seconds_ += pending_.get();
+    wait_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ++written_;
   }
   long written() const { return written_; }
+  double encode_seconds() const { return encode_seconds_; }  // PNG encoding, on its own thread
+  double wait_seconds() const { return wait_seconds_; }      // the run waiting for it
   ~FrameWriter() {
     if (pending_.valid()) pending_.wait();
   }
 
  private:
-  std::future<void> pending_;
+  std::future<double> pending_;
   long written_ = 0;
+  double encode_seconds_ = 0, wait_seconds_ = 0;
 };
+
+// Where a render's wall time went (DIR/timing.json; `sluice bench --end-to-end` reads it).
+struct RenderTiming {
+  double total = 0, simulation = 0, drawing = 0, png = 0, png_wait = 0, exports = 0, video = 0;
+  long frames = 0;
+};
+
+void write_timing(const fs::path& dir, const RenderTiming& t) {
+  const nlohmann::json j = {{"frames", t.frames},
+                            {"total_s", t.total},
+                            {"simulation_s", t.simulation},
+                            {"drawing_s", t.drawing},
+                            {"png_s", t.png},
+                            {"png_wait_s", t.png_wait},
+                            {"exports_s", t.exports},
+                            {"video_s", t.video}};
+  write_file_atomic((dir / "timing.json").string(), j.dump(2) + "\n");
+}
 
 // The frame index of `scene`'s end, as Simulation::frame_count() counts it.
 Index last_frame_of(const Scene& scene) {
@@ -135,6 +162,10 @@ Index last_frame_of(const Scene& scene) {
 }  // namespace
 
 int run_render(const RenderOptions& given) {
+  const auto start = std::chrono::steady_clock::now();
+  auto since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
   const RenderOptions o = given.resume.empty() ? given : resumed_options(given);
   set_threads(o.threads);
   std::vector<std::string> overrides = o.set;
@@ -186,6 +217,8 @@ int run_render(const RenderOptions& given) {
   Image image;
   Index rendered = 0;
   double ms_render = 0;
+  RenderTiming timing;
+  double frame_seconds = 0;  // in the frame callback, all of it
   catch_interrupts();
   RunControl control = make_run_control(o.resume, o.checkpoint_every, run_record(o), dir, scene, o.quiet);
   control.threads_fixed = o.threads > 0 || std::getenv("OMP_NUM_THREADS") != nullptr;
@@ -197,20 +230,36 @@ int run_render(const RenderOptions& given) {
     const auto t0 = std::chrono::steady_clock::now();
     if (!builder) builder = std::make_unique<FrameBuilder>(config, sim);
     renderer.render(builder->build(sim, frame, st), image);
+    timing.drawing += since(t0);
     writer.write((frames_dir / frame_file(o.frame_pattern, frame)).string(), image);
-    ms_render += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    ms_render += 1000 * since(t0);
     ++rendered;
+    const auto t1 = std::chrono::steady_clock::now();
     exporter.write(frame, sim.time(), sim.fluid(), sim.boundary());
+    timing.exports += since(t1);
+    frame_seconds += since(t0);
   };
   // A resumed run's PNGs before the checkpoint's frame were written by the earlier run.
   const long earlier =
       control.resume ? std::max<long>(0, std::min<long>(last, control.resume->checkpoint.state.frame - 1) - first + 1) : 0;
+  const auto run_start = std::chrono::steady_clock::now();
   run_scene(scene, dir, o.quiet, on_frame, control,
             FrameOutput{[&] { writer.wait(); }, [&] { return earlier + writer.written(); }});
+  timing.simulation = since(run_start) - frame_seconds;
+  timing.frames = rendered;
+  timing.png = writer.encode_seconds();
+  timing.png_wait = writer.wait_seconds();
+  auto finish_timing = [&] {
+    timing.total = since(start);
+    write_timing(dir, timing);
+  };
   if (!o.quiet)
     std::fprintf(stderr, "sluice: %d frames in %s (render + read-back %.1f ms per frame; PNG encoding overlapped)\n",
                  rendered, frames_dir.c_str(), rendered ? ms_render / rendered : 0.0);
-  if (o.no_video || rendered == 0) return 0;
+  if (o.no_video || rendered == 0) {
+    finish_timing();
+    return 0;
+  }
 
   VideoJob job;
   job.frames_pattern = (frames_dir / o.frame_pattern).string();
@@ -221,8 +270,10 @@ int run_render(const RenderOptions& given) {
   job.output = (dir / (scene.name + "." + extension(format))).string();
   job.log = (dir / "ffmpeg.log").string();
   job.cancelled = [] { return interrupt_signal() != 0; };
+  const auto video_start = std::chrono::steady_clock::now();
   try {
     encode_video(job);
+    timing.video = since(video_start);
   } catch (const VideoInterrupted&) {
     video_interrupted(dir, job, interrupt_signal());
   } catch (const VideoError& e) {
@@ -230,6 +281,7 @@ int run_render(const RenderOptions& given) {
     throw VideoError(std::string(e.what()) + "; the frames are kept in " + frames_dir.string());
   }
   if (!o.quiet) std::fprintf(stderr, "sluice: wrote %s\n", job.output.c_str());
+  finish_timing();
   return 0;
 }
 

@@ -1,0 +1,65 @@
+// `sluice bench --end-to-end`: a whole render timed and split, as a table and a CSV.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "test_process.h"
+
+namespace sluice {
+namespace {
+
+using test::CaseDir;
+
+const char* kTiny = R"({"name": "tiny", "spacing": 0.05, "time": {"duration": 0.1, "fps": 20, "dt": 0.005},
+  "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}],
+  "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.5, 0.5]}]})";
+
+std::vector<std::string> split(const std::string& line, char sep) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  for (std::string item; std::getline(ss, item, sep);) out.push_back(item);
+  return out;
+}
+
+TEST(BenchEndToEnd, SplitsARenderIntoItsParts) {
+  CaseDir dir;
+  test::write_text(dir.work() / "tiny.json", kTiny);
+  const test::Result r = test::run_sluice(
+      dir, {"bench", "--end-to-end", "tiny.json", "--duration", "0.1", "--fps", "20", "--resolution", "64x64", "-o", "out"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("simul_s"), std::string::npos) << r.out;
+  const auto t = nlohmann::json::parse(test::read_text(dir.work() / "out" / "timing.json"));
+  EXPECT_EQ(t.at("frames").get<long>(), 3);  // t = 0, 0.05, 0.1
+  double parts = 0;
+  for (const char* key : {"simulation_s", "drawing_s", "png_wait_s", "exports_s", "video_s"}) {
+    EXPECT_GE(t.at(key).get<double>(), 0.0) << key;
+    parts += t.at(key).get<double>();
+  }
+  EXPECT_GT(t.at("simulation_s").get<double>(), 0.0);
+  EXPECT_GT(t.at("video_s").get<double>(), 0.0);
+  EXPECT_LE(parts, t.at("total_s").get<double>());
+  EXPECT_TRUE(test::fs::exists(dir.work() / "out" / "tiny.mp4"));
+
+  const std::vector<std::string> lines = split(test::read_text(dir.work() / "out" / "end_to_end.csv"), '\n');
+  ASSERT_EQ(lines.size(), 2u);
+  const std::vector<std::string> head = split(lines[0], ','), row = split(lines[1], ',');
+  ASSERT_EQ(head.size(), row.size());
+  EXPECT_EQ(head[0], "scene");
+  EXPECT_EQ(row[0], "tiny");
+  EXPECT_EQ(row[1], "64x64");
+  EXPECT_EQ(row[4], "3");
+}
+
+TEST(BenchEndToEnd, TakesOneScene) {
+  CaseDir dir;
+  test::write_text(dir.work() / "tiny.json", kTiny);
+  const test::Result r = test::run_sluice(dir, {"bench", "--end-to-end", "tiny.json", "tiny.json", "-o", "out"});
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("--end-to-end takes one scene"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace sluice
