@@ -13,9 +13,7 @@ namespace {
 
 using test::CaseDir;
 
-const char* kTiny = R"({"name": "tiny", "spacing": 0.05, "time": {"duration": 0.1, "fps": 20, "dt": 0.005},
-  "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}],
-  "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.5, 0.5]}]})";
+using test::kTinyScene;
 
 std::vector<std::string> split(const std::string& line, char sep) {
   std::vector<std::string> out;
@@ -26,7 +24,7 @@ std::vector<std::string> split(const std::string& line, char sep) {
 
 TEST(BenchEndToEnd, SplitsARenderIntoItsParts) {
   CaseDir dir;
-  test::write_text(dir.work() / "tiny.json", kTiny);
+  test::write_text(dir.work() / "tiny.json", kTinyScene);
   const test::Result r = test::run_sluice(
       dir, {"bench", "--end-to-end", "tiny.json", "--duration", "0.1", "--fps", "20", "--resolution", "64x64", "-o", "out"});
   ASSERT_EQ(r.status, 0) << r.err;
@@ -55,7 +53,7 @@ TEST(BenchEndToEnd, SplitsARenderIntoItsParts) {
 
 TEST(BenchEndToEnd, TakesOneScene) {
   CaseDir dir;
-  test::write_text(dir.work() / "tiny.json", kTiny);
+  test::write_text(dir.work() / "tiny.json", kTinyScene);
   const test::Result r = test::run_sluice(dir, {"bench", "--end-to-end", "tiny.json", "tiny.json", "-o", "out"});
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("--end-to-end takes one scene"), std::string::npos) << r.err;

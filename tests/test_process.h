@@ -59,6 +59,13 @@ inline void write_text(const fs::path& p, const std::string& text) {
   std::ofstream(p, std::ios::binary) << text;
 }
 
+// A scene of 36 particles in a closed box, 0.1 s at 20 frames/s: a program run that
+// takes milliseconds.
+inline constexpr const char* kTinyScene =
+    R"({"name": "tiny", "spacing": 0.05, "time": {"duration": 0.1, "fps": 20, "dt": 0.005},
+  "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}],
+  "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.5, 0.5]}]})";
+
 struct Result {
   int status = -1;  // exit status, or 128 + signal
   std::string out, err;

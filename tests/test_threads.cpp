@@ -15,9 +15,7 @@ namespace {
 
 using test::CaseDir;
 
-const char* kTiny = R"({"name": "tiny", "spacing": 0.05, "time": {"duration": 0.02, "fps": 50, "dt": 0.005},
-  "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}],
-  "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.5, 0.5]}]})";
+using test::kTinyScene;
 
 // Sets or unsets an environment variable for the scope, and restores it.
 class ScopedEnv {
@@ -37,7 +35,7 @@ class ScopedEnv {
 
 std::string recorded_wait_policy() {
   CaseDir dir;
-  test::write_text(dir.work() / "tiny.json", kTiny);
+  test::write_text(dir.work() / "tiny.json", kTinyScene);
   const test::Result r = test::run_sluice(dir, {"simulate", "tiny.json", "-o", "out", "-q"});
   EXPECT_EQ(r.status, 0) << r.err;
   return nlohmann::json::parse(test::read_text(dir.work() / "out" / "summary.json")).value("thread_wait", "");
