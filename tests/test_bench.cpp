@@ -1,4 +1,5 @@
 // `sluice bench --end-to-end`: a whole render timed and split, as a table and a CSV.
+// (Suite named Render*: the sanitizer run of .ci/run leaves out what runs the renderer.)
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -22,7 +23,7 @@ std::vector<std::string> split(const std::string& line, char sep) {
   return out;
 }
 
-TEST(BenchEndToEnd, SplitsARenderIntoItsParts) {
+TEST(RenderBenchEndToEnd, SplitsARenderIntoItsParts) {
   CaseDir dir;
   test::write_text(dir.work() / "tiny.json", kTinyScene);
   const test::Result r = test::run_sluice(
@@ -51,7 +52,7 @@ TEST(BenchEndToEnd, SplitsARenderIntoItsParts) {
   EXPECT_EQ(row[4], "3");
 }
 
-TEST(BenchEndToEnd, TakesOneScene) {
+TEST(RenderBenchEndToEnd, TakesOneScene) {
   CaseDir dir;
   test::write_text(dir.work() / "tiny.json", kTinyScene);
   const test::Result r = test::run_sluice(dir, {"bench", "--end-to-end", "tiny.json", "tiny.json", "-o", "out"});
