@@ -45,12 +45,6 @@ std::vector<std::string> split(const std::string& text, char sep) {
   }
 }
 
-std::string number_text(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
 std::vector<double> parse_times(const std::string& text) {
   const char* allowed = "expected simulated times T1,T2,... in seconds, strictly increasing, e.g. 0,0.4,0.8";
   std::vector<double> times;

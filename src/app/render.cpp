@@ -56,12 +56,6 @@ std::string frame_file(const std::string& pattern, Index frame) {
   return buf;
 }
 
-std::string number_text(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
 std::string read_text_file(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -216,7 +210,6 @@ int run_render(const RenderOptions& given) {
   FrameWriter writer;
   Image image;
   Index rendered = 0;
-  double ms_render = 0;
   RenderTiming timing;
   double frame_seconds = 0;  // in the frame callback, all of it
   catch_interrupts();
@@ -232,7 +225,6 @@ int run_render(const RenderOptions& given) {
     renderer.render(builder->build(sim, frame, st), image);
     timing.drawing += since(t0);
     writer.write((frames_dir / frame_file(o.frame_pattern, frame)).string(), image);
-    ms_render += 1000 * since(t0);
     ++rendered;
     const auto t1 = std::chrono::steady_clock::now();
     exporter.write(frame, sim.time(), sim.fluid(), sim.boundary());
@@ -255,7 +247,7 @@ int run_render(const RenderOptions& given) {
   };
   if (!o.quiet)
     std::fprintf(stderr, "sluice: %d frames in %s (render + read-back %.1f ms per frame; PNG encoding overlapped)\n",
-                 rendered, frames_dir.c_str(), rendered ? ms_render / rendered : 0.0);
+                 rendered, frames_dir.c_str(), rendered ? 1000 * timing.drawing / rendered : 0.0);
   if (o.no_video || rendered == 0) {
     finish_timing();
     return 0;

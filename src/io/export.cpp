@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <numeric>
 #include <type_traits>
 
 #include "io/atomic_file.h"
@@ -21,7 +22,7 @@ std::vector<Index> by_id(const FluidParticles& f) {
 
 std::vector<Index> in_storage_order(Index n) {
   std::vector<Index> order(static_cast<size_t>(n));
-  for (Index k = 0; k < n; ++k) order[k] = k;
+  std::iota(order.begin(), order.end(), Index(0));
   return order;
 }
 

@@ -16,13 +16,11 @@ void parse_resolution(const std::string& s, int& w, int& h, const std::string& f
     throw FlagError(flag, s, "expected WxH with 2 <= W, H <= 16384, e.g. 1280x720");
 }
 
-namespace {
 std::string number_text(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }
-}  // namespace
 
 bool parse_pair(const std::string& s, double& a, double& b) {
   const size_t colon = s.find(':');

@@ -16,6 +16,9 @@
 
 namespace sluice::view {
 
+// A number as messages show it (%g: 0.5, 1e-06).
+std::string number_text(double v);
+
 // A mistake in a command-line flag: "FLAG VALUE: what is allowed".
 class FlagError : public std::runtime_error {
  public:
