@@ -22,7 +22,7 @@
 
 #include "io/checkpoint.h"
 #include "scene/scene.h"
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 #include "test_util.h"
 
 namespace sluice {

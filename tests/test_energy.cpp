@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 #include "test_util.h"
 
 namespace sluice {

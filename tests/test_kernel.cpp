@@ -1,12 +1,12 @@
-// Cubic spline kernel (src/sim/kernel.h): normalisation, values, support, continuity,
+// Cubic spline kernel (src/sph/kernel.h): normalisation, values, support, continuity,
 // gradient against finite differences, lattice sums.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "sim/kernel.h"
-#include "sim/simulation.h"
+#include "sph/kernel.h"
+#include "solver/simulation.h"
 
 namespace sluice {
 namespace {

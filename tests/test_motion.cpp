@@ -5,8 +5,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "scene/motion.h"
-#include "scene/shapes.h"
+#include "solver/motion.h"
+#include "core/shapes.h"
 #include "test_util.h"
 
 namespace sluice {

@@ -1,4 +1,4 @@
-// Neighbour search (src/sim/neighbors.h): the spatial hash grid against the O(n m)
+// Neighbour search (src/sph/neighbors.h): the spatial hash grid against the O(n m)
 // reference on many point sets, pair caches, spatial order, transpose, and thread
 // independence.
 #include <gtest/gtest.h>
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/kernel.h"
-#include "sim/neighbors.h"
+#include "sph/kernel.h"
+#include "sph/neighbors.h"
 #include "test_util.h"
 
 namespace sluice {

@@ -1,4 +1,4 @@
-// Physics of the simulation (src/sim/simulation.cpp) on small scenes built from inline
+// Physics of the simulation (src/solver/simulation.cpp) on small scenes built from inline
 // JSON: rest density, boundary volumes, a block at rest, hydrostatic pressure for every
 // solver and boundary method, IISPH convergence and containment in a dam break,
 // determinism, frame landing, the instability detector, brute force vs grid search.
@@ -13,7 +13,7 @@
 
 #include "scene/scene.h"
 #include "analysis/validation.h"
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 #include "test_util.h"
 
 namespace sluice {

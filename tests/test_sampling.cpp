@@ -1,4 +1,4 @@
-// Non-uniform boundary sampling (src/scene/shapes.cpp, read_boundary in scene.cpp): graded
+// Non-uniform boundary sampling (src/core/shapes.cpp, read_boundary in scene.cpp): graded
 // spacing along a segment, boundary samples from a point list (inline or a file) and their
 // errors, and a tank of fluid at rest behind walls sampled sparser and denser than the fluid.
 #include <gtest/gtest.h>
@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "scene/scene.h"
-#include "scene/shapes.h"
-#include "sim/simulation.h"
+#include "core/shapes.h"
+#include "solver/simulation.h"
 #include "test_util.h"
 
 namespace sluice {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "scene/scene.h"
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 
 namespace sluice::test {
 

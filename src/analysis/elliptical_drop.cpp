@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 
 namespace sluice::analysis {
 

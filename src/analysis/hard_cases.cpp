@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "scene/scene.h"
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 
 namespace sluice::analysis {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/settings.h"
+#include "solver/settings.h"
 
 namespace sluice::analysis {
 

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "analysis/csv.h"
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 
 namespace sluice::analysis {
 

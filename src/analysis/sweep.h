@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "scene/scene.h"
-#include "sim/stats.h"
+#include "solver/stats.h"
 
 namespace sluice::analysis {
 

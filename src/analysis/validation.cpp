@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 
 namespace sluice::analysis {
 

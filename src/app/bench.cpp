@@ -15,7 +15,7 @@
 #include "app/run.h"
 #include "io/output.h"
 #include "scene/scene.h"
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 
 namespace sluice::app {
 

@@ -26,7 +26,7 @@
 #include "app/run.h"
 #include "io/output.h"
 #include "scene/scene.h"
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 
 namespace sluice::app {
 

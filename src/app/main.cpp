@@ -17,7 +17,7 @@
 #include "render/image.h"
 #include "render/video.h"
 #include "scene/scene.h"
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 
 namespace {
 

@@ -15,7 +15,7 @@
 #include "render/frame.h"
 #include "render/image.h"
 #include "scene/scene.h"
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 #include "view/montage.h"
 #include "view/scene_view.h"
 

@@ -22,7 +22,7 @@
 #include "render/image.h"
 #include "render/video.h"
 #include "scene/scene.h"
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 #include "view/scene_view.h"
 
 namespace sluice::app {

@@ -11,7 +11,7 @@
 #include "app/run.h"
 #include "io/checkpoint.h"
 #include "io/output.h"
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 
 namespace sluice::app {
 

@@ -12,7 +12,7 @@
 #include "io/checkpoint.h"
 #include "io/export.h"
 #include "scene/scene.h"
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 
 namespace sluice::app {
 

@@ -20,7 +20,7 @@
 #include "io/export.h"
 #include "io/output.h"
 #include "scene/scene.h"
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 
 namespace sluice::app {
 

@@ -20,8 +20,8 @@
 
 #include "io/output.h"
 #include "scene/scene.h"
-#include "sim/simulation.h"
-#include "sim/stats.h"
+#include "solver/simulation.h"
+#include "solver/stats.h"
 
 namespace sluice {
 

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "sim/particles.h"
+#include "sph/particles.h"
 
 namespace sluice {
 

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "io/atomic_file.h"
-#include "sim/particles.h"
-#include "sim/stats.h"
+#include "sph/particles.h"
+#include "solver/stats.h"
 
 namespace sluice {
 

@@ -18,7 +18,7 @@
 #include <sstream>
 #include <utility>
 
-#include "scene/shapes.h"
+#include "core/shapes.h"
 
 namespace sluice {
 

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "scene/motion.h"
-#include "scene/shapes.h"
-#include "sim/settings.h"
-#include "sim/types.h"
+#include "solver/motion.h"
+#include "core/shapes.h"
+#include "solver/settings.h"
+#include "core/types.h"
 
 namespace sluice {
 

@@ -12,7 +12,7 @@
 
 #include "render/frame.h"
 #include "scene/scene.h"
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 
 namespace sluice::view {
 

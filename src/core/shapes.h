@@ -4,7 +4,7 @@
 // No JSON here: scene.cpp validates the input and builds these plain structs.
 #include <vector>
 
-#include "sim/types.h"
+#include "core/types.h"
 
 namespace sluice::shapes {
 

@@ -1,4 +1,4 @@
-#include "sim/neighbors.h"
+#include "sph/neighbors.h"
 
 #include <algorithm>
 #include <bit>
@@ -6,8 +6,8 @@
 
 #include <omp.h>
 
-#include "sim/kernel.h"
-#include "sim/parallel.h"
+#include "sph/kernel.h"
+#include "core/parallel.h"
 
 namespace sluice {
 

@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sim/types.h"
+#include "core/types.h"
 
 namespace sluice {
 

@@ -6,7 +6,7 @@
 // the analytic time derivatives.
 #include <vector>
 
-#include "sim/types.h"
+#include "core/types.h"
 
 namespace sluice {
 

@@ -1,4 +1,4 @@
-#include "scene/motion.h"
+#include "solver/motion.h"
 
 #include <algorithm>
 #include <cmath>

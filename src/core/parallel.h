@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "sim/types.h"
+#include "core/types.h"
 
 namespace sluice {
 

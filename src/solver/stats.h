@@ -1,6 +1,6 @@
 #pragma once
 // What one simulation step reports; one row of stats.csv.
-#include "sim/types.h"
+#include "core/types.h"
 
 namespace sluice {
 

@@ -1,4 +1,4 @@
-#include "sim/settings.h"
+#include "solver/settings.h"
 
 namespace sluice {
 

@@ -1,4 +1,4 @@
-#include "sim/simulation.h"
+#include "solver/simulation.h"
 
 #include <algorithm>
 #include <atomic>
@@ -7,7 +7,7 @@
 #include <limits>
 #include <sstream>
 
-#include "sim/parallel.h"
+#include "core/parallel.h"
 
 namespace sluice {
 

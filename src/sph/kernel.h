@@ -8,7 +8,7 @@
 // smooth at q = 1 has the minus sign, which the kernel test checks.)
 #include <cmath>
 
-#include "sim/types.h"
+#include "core/types.h"
 
 namespace sluice {
 

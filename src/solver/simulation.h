@@ -7,11 +7,11 @@
 #include <string>
 
 #include "scene/scene.h"
-#include "sim/kernel.h"
-#include "sim/neighbors.h"
-#include "sim/particles.h"
-#include "sim/settings.h"
-#include "sim/stats.h"
+#include "sph/kernel.h"
+#include "sph/neighbors.h"
+#include "sph/particles.h"
+#include "solver/settings.h"
+#include "solver/stats.h"
 
 namespace sluice {
 

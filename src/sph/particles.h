@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sim/types.h"
+#include "core/types.h"
 
 namespace sluice {
 

@@ -3,7 +3,7 @@
 // Units are SI in 2D: m, s, kg/m^2 (density), Pa*m = N/m (2D pressure).
 #include <string>
 
-#include "sim/types.h"
+#include "core/types.h"
 
 namespace sluice {
 
