@@ -23,6 +23,7 @@
 
 #include "render/image.h"
 #include "scene/scene.h"
+#include "solver/leak_check.h"
 #include "test_process.h"
 
 namespace sluice {

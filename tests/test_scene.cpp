@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "solver/leak_check.h"
 
 namespace sluice {
 namespace {

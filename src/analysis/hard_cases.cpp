@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "scene/scene.h"
+#include "solver/leak_check.h"
 #include "solver/simulation.h"
 
 namespace sluice::analysis {

@@ -1,16 +1,14 @@
 #pragma once
-// A scene file (JSON) resolved into everything a simulation needs: settings, fluid
-// particles on a lattice, boundary samples with their object ids. Reading and
-// validation live in scene.cpp; sampling of shapes in shapes.cpp.
+// A scene file (JSON) resolved into a SimulationSetup (settings, fluid particles on a
+// lattice, boundary samples with their objects) plus the program's own settings.
+// Reading and validation live in scene.cpp; sampling of shapes in core/shapes.cpp.
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "solver/motion.h"
-#include "core/shapes.h"
-#include "solver/settings.h"
 #include "core/types.h"
+#include "solver/setup.h"
 
 namespace sluice {
 
@@ -23,18 +21,6 @@ inline constexpr double kMinDuration = 1e-6;
 class SceneError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
-};
-
-// One boundary object of the scene (a wall, a container, an obstacle). Its samples are
-// boundary_x[first, first + count).
-struct BoundaryObject {
-  std::string name;   // "name" key, or "<shape><index>"
-  std::string shape;  // box | polyline | polygon | circle | ellipse
-  bool moving = false;  // has a scripted motion; false: a wall at rest (volumes computed once)
-  Motion motion;        // pose over time; boundary_x holds the samples at rest (identity pose)
-  shapes::BoundaryShape geometry;  // the shape at rest (solid-side tests, e.g. leak checks)
-  Index first = 0;
-  Index count = 0;
 };
 
 struct OutputSettings {
@@ -54,44 +40,18 @@ struct RenderSettings {
   Vec2 view_min{0, 0}, view_max{1, 1};
 };
 
-struct Scene {
-  std::string file;    // path as given (for messages)
-  std::string name;    // "name" key, or the file's stem
-  double spacing = 0;  // fluid particle spacing h [m]; kernel support is 2h
-  SolverSettings solver;
-  TimeSettings time;
-  StabilityLimits limits;
+// A scene: the simulation's setup plus what only the program reads (its name and file,
+// output and render settings, the resolved JSON).
+struct Scene : SimulationSetup {
+  std::string file;  // path as given (for messages)
+  std::string name;  // "name" key, or the file's stem
   OutputSettings output;
   RenderSettings render;
 
-  std::vector<Vec2> fluid_x, fluid_v;      // initial fluid particles
-  std::vector<Vec2> boundary_x;            // all boundary samples
-  std::vector<Index> boundary_object;      // object index of each boundary sample
-  std::vector<BoundaryObject> objects;
-  Index fluid_removed = 0;                 // lattice points dropped inside boundary bands
-  Index fluid_near_samples = 0;            // of those, dropped only as closer than 0.9 h to a sample
-
-  Vec2 bounds_min{0, 0}, bounds_max{0, 0};  // box around all particles at t = 0
-  nlohmann::json resolved;                  // the scene with every default filled in
+  Index fluid_removed = 0;       // lattice points dropped inside boundary bands
+  Index fluid_near_samples = 0;  // of those, dropped only as closer than 0.9 h to a sample
+  nlohmann::json resolved;       // the scene with every default filled in
 };
-
-// Fluid particles on the solid side of any boundary at time t (each object at its
-// scripted pose) and more than half a spacing behind its surface, i.e. past the first
-// sample layer: particles that passed through a wall. Open polylines count a band of
-// half a spacing behind their last layer. 0 for a healthy run.
-Index count_fluid_in_solids(const Scene& scene, const std::vector<Vec2>& fluid_x, double t);
-
-// The same count, with the first such particle (in the order of fluid_x): its index, the
-// object it is in, where it is and the nearest point of that object's surface (where it
-// crossed, to within the step's motion), all at time t.
-struct FluidInSolids {
-  Index count = 0;
-  Index first = -1;
-  std::string object;
-  Vec2 at = Vec2::Zero();
-  Vec2 surface = Vec2::Zero();
-};
-FluidInSolids find_fluid_in_solids(const Scene& scene, const std::vector<Vec2>& fluid_x, double t);
 
 // Reads and validates a scene file; each override is "json/path=value" or
 // "json.path=value" (value parsed as JSON, else taken as a string), applied before

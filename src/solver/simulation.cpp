@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/parallel.h"
+#include "solver/leak_check.h"
 
 namespace sluice {
 
@@ -55,17 +56,17 @@ inline double compression_percent(double rho, double rho0) {
 // IISPH has no sound speed; its artificial viscosity takes Monaghan's (1994) choice for a
 // weakly compressible fluid, c = 10 v_max, with v_max = sqrt(2 g H) of the fluid's
 // initial height H (or its fastest initial particle, if faster).
-double incompressible_sound_speed(const Scene& scene) {
-  const Vec2 g = scene.solver.gravity;
+double incompressible_sound_speed(const SimulationSetup& setup) {
+  const Vec2 g = setup.solver.gravity;
   double vmax = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const Vec2& v : scene.fluid_v) vmax = std::max(vmax, v.norm());
+  for (const Vec2& v : setup.fluid_v) vmax = std::max(vmax, v.norm());
   if (g.norm() > 0) {
     const Vec2 up = -g.normalized();
-    for (const Vec2& x : scene.fluid_x) {
+    for (const Vec2& x : setup.fluid_x) {
       lo = std::min(lo, x.dot(up));
       hi = std::max(hi, x.dot(up));
     }
-    if (hi >= lo) vmax = std::max(vmax, std::sqrt(2.0 * g.norm() * (hi - lo + scene.spacing)));
+    if (hi >= lo) vmax = std::max(vmax, std::sqrt(2.0 * g.norm() * (hi - lo + setup.spacing)));
   }
   return 10.0 * vmax;
 }
@@ -83,16 +84,16 @@ double lattice_kernel_sum(const CubicSpline2D& kernel) {
   return sum;
 }
 
-Simulation::Simulation(const Scene& scene)
-    : scene_(scene),
-      settings_(scene.solver),
-      kernel_(scene.spacing),
-      mass_(scene.solver.rest_density / lattice_kernel_sum(kernel_)) {
-  const Index n = static_cast<Index>(scene.fluid_x.size());
+Simulation::Simulation(const SimulationSetup& setup)
+    : setup_(setup),
+      settings_(setup.solver),
+      kernel_(setup.spacing),
+      mass_(setup.solver.rest_density / lattice_kernel_sum(kernel_)) {
+  const Index n = static_cast<Index>(setup.fluid_x.size());
   fluid_.resize(n);
   for (Index i = 0; i < n; ++i) {
-    fluid_.x[i] = scene.fluid_x[i];
-    fluid_.v[i] = i < static_cast<Index>(scene.fluid_v.size()) ? scene.fluid_v[i] : Vec2::Zero();
+    fluid_.x[i] = setup.fluid_x[i];
+    fluid_.v[i] = i < static_cast<Index>(setup.fluid_v.size()) ? setup.fluid_v[i] : Vec2::Zero();
     fluid_.rho[i] = settings_.rest_density;
     fluid_.p[i] = 0.0;
     fluid_.id[i] = i;
@@ -100,15 +101,15 @@ Simulation::Simulation(const Scene& scene)
 
   // Boundary particles in spatial order, once. Moving ones keep their rest position x0
   // and get their pose from the script every step.
-  const std::vector<Index> order = spatial_order(scene.boundary_x, kernel_.support());
+  const std::vector<Index> order = spatial_order(setup.boundary_x, kernel_.support());
   const Index nb = static_cast<Index>(order.size());
   boundary_.x.resize(nb);
   boundary_.object.resize(nb);
   boundary_.moving.assign(nb, 0);
   for (Index k = 0; k < nb; ++k) {
-    boundary_.x[k] = scene.boundary_x[order[k]];
-    boundary_.object[k] = scene.boundary_object.empty() ? 0 : scene.boundary_object[order[k]];
-    if (boundary_.object[k] < static_cast<Index>(scene.objects.size()) && scene.objects[boundary_.object[k]].moving) {
+    boundary_.x[k] = setup.boundary_x[order[k]];
+    boundary_.object[k] = setup.boundary_object.empty() ? 0 : setup.boundary_object[order[k]];
+    if (boundary_.object[k] < static_cast<Index>(setup.objects.size()) && setup.objects[boundary_.object[k]].moving) {
       boundary_.moving[k] = 1;
       moving_.push_back(k);
     }
@@ -132,18 +133,18 @@ Simulation::Simulation(const Scene& scene)
     compute_volumes(boundary_grid_, all, boundary_.volume);
   }
 
-  const Vec2 size = (scene.bounds_max - scene.bounds_min).cwiseMax(Vec2::Constant(scene.spacing));
-  const double margin = scene.limits.bounds_margin * size.maxCoeff();
-  lost_min_ = scene.bounds_min - Vec2::Constant(margin);
-  lost_max_ = scene.bounds_max + Vec2::Constant(margin);
+  const Vec2 size = (setup.bounds_max - setup.bounds_min).cwiseMax(Vec2::Constant(setup.spacing));
+  const double margin = setup.limits.bounds_margin * size.maxCoeff();
+  lost_min_ = setup.bounds_min - Vec2::Constant(margin);
+  lost_max_ = setup.bounds_max + Vec2::Constant(margin);
 
-  last_frame_ = static_cast<Index>(std::ceil(scene.time.duration * scene.time.fps - 1e-9));
+  last_frame_ = static_cast<Index>(std::ceil(setup.time.duration * setup.time.fps - 1e-9));
   wcsph_speed_ = std::sqrt(settings_.stiffness / settings_.rest_density);
   sound_speed_ = settings_.sound_speed;
-  if (sound_speed_ <= 0) sound_speed_ = settings_.type == SolverType::WCSPH ? wcsph_speed_ : incompressible_sound_speed(scene);
+  if (sound_speed_ <= 0) sound_speed_ = settings_.type == SolverType::WCSPH ? wcsph_speed_ : incompressible_sound_speed(setup);
   reorder_fluid();
   recompute_density();
-  if (scene.time.settle > 0) settle();
+  if (setup.time.settle > 0) settle();
 }
 
 // Section 4.1: V_b = gamma1 / sum_b' W(x_bb'), summed over all boundary particles of
@@ -232,8 +233,8 @@ void Simulation::restore(const SimulationState& s) {
   for (Index b = 0; b < nb; ++b)
     require(boundary_.moving[b] || s.boundary_x[b] == boundary_.x[b],
             "boundary sample " + std::to_string(b) + " at rest lies elsewhere than in this scene");
-  require(std::isfinite(s.time) && s.time >= 0 && s.time <= scene_.time.duration,
-          "time " + std::to_string(s.time) + " s is outside this scene's 0.." + std::to_string(scene_.time.duration) + " s");
+  require(std::isfinite(s.time) && s.time >= 0 && s.time <= setup_.time.duration,
+          "time " + std::to_string(s.time) + " s is outside this scene's 0.." + std::to_string(setup_.time.duration) + " s");
   require(s.step >= 0 && s.frame >= 0 && s.frame <= last_frame_,
           "step " + std::to_string(s.step) + " / frame " + std::to_string(s.frame) + " out of range (last frame " +
               std::to_string(last_frame_) + ")");
@@ -260,7 +261,7 @@ void Simulation::restore(const SimulationState& s) {
 // come from the script at t, never from accumulated increments.
 void Simulation::move_boundaries(double dt) {
   std::vector<PoseMap> now, mid;
-  for (const BoundaryObject& obj : scene_.objects) {
+  for (const BoundaryObject& obj : setup_.objects) {
     now.emplace_back(obj.moving ? obj.motion.at(time_) : Pose{});
     mid.emplace_back(obj.moving ? obj.motion.at(time_ + 0.5 * dt) : Pose{});
   }
@@ -315,12 +316,12 @@ void Simulation::update_boundary_volumes() {
 
 double Simulation::max_boundary_speed() const {
   double vmax = 0.0;
-  for (size_t o = 0; o < scene_.objects.size(); ++o) {
-    const BoundaryObject& obj = scene_.objects[o];
+  for (size_t o = 0; o < setup_.objects.size(); ++o) {
+    const BoundaryObject& obj = setup_.objects[o];
     if (!obj.moving) continue;
     const PoseMap pose(obj.motion.at(time_));
     for (Index k = 0; k < obj.count; ++k)
-      vmax = std::max(vmax, pose.velocity(scene_.boundary_x[obj.first + k]).squaredNorm());
+      vmax = std::max(vmax, pose.velocity(setup_.boundary_x[obj.first + k]).squaredNorm());
   }
   return std::sqrt(vmax);
 }
@@ -352,7 +353,7 @@ StepStats Simulation::step() {
   st.fluid_particles = fluid_.size();
 
   // Time step of Eq. 14 (or fixed), shortened so that steps land on the next frame time.
-  const double target = std::min(static_cast<double>(frame_ + 1) / scene_.time.fps, scene_.time.duration);
+  const double target = std::min(static_cast<double>(frame_ + 1) / setup_.time.fps, setup_.time.duration);
   const double remaining = target - time_;
   const double dt_nominal = choose_time_step();
   const double n_steps = std::max(1.0, std::ceil(remaining / dt_nominal - 1e-9));
@@ -379,7 +380,7 @@ StepStats Simulation::step() {
 // finds its equilibrium, with its pressure field, before the run starts. The run then
 // starts at rest; the pressures stay as the next solve's warm start. No statistics.
 void Simulation::settle() {
-  const double duration = scene_.time.settle, tau = 0.1 * duration;
+  const double duration = setup_.time.settle, tau = 0.1 * duration;
   std::fill(boundary_.v.begin(), boundary_.v.end(), Vec2::Zero());
   std::fill(boundary_.a.begin(), boundary_.a.end(), Vec2::Zero());
   double t = 0;
@@ -437,7 +438,7 @@ void Simulation::advance(double dt, StepStats& st, bool settling) {
     integrate(dt);
     const Index n = fluid_.size();
     const double vmax = std::sqrt(parallel_max(n, 0.0, [&](Index i) { return fluid_.v[i].squaredNorm(); }));
-    st.max_cfl = vmax * dt / scene_.spacing;
+    st.max_cfl = vmax * dt / setup_.spacing;
     measure_energy(st);
     st.ms_integrate = t.ms();
   }
@@ -462,16 +463,16 @@ void Simulation::measure_energy(StepStats& st) const {
 
 // Fixed dt, or the CFL condition Eq. 14: dt = lambda h / v_max, at most dt_max.
 double Simulation::choose_time_step() const {
-  const TimeSettings& ts = scene_.time;
+  const TimeSettings& ts = setup_.time;
   if (ts.dt > 0) return ts.dt;
   const Index n = fluid_.size();
   // Moving boundary samples must not outrun the fluid's CFL bound either.
   const double vmax = std::max(std::sqrt(parallel_max(n, 0.0, [&](Index i) { return fluid_.v[i].squaredNorm(); })),
                                max_boundary_speed());
   double dt = ts.dt_max;
-  if (vmax > 0) dt = std::min(dt, ts.cfl * scene_.spacing / vmax);
+  if (vmax > 0) dt = std::min(dt, ts.cfl * setup_.spacing / vmax);
   // WCSPH also resolves its sound waves (Monaghan 1992): dt <= 0.4 h / (c + v_max).
-  if (settings_.type == SolverType::WCSPH) dt = std::min(dt, kAcousticCfl * scene_.spacing / (wcsph_speed_ + vmax));
+  if (settings_.type == SolverType::WCSPH) dt = std::min(dt, kAcousticCfl * setup_.spacing / (wcsph_speed_ + vmax));
   if (dt < ts.dt_min) {
     std::ostringstream os;
     os << "unstable at step " << step_ + 1 << ", t = " << time_ << " s: the CFL time step " << dt
@@ -567,7 +568,7 @@ void Simulation::correct_gradients() {
 void Simulation::apply_nonpressure(double dt) {
   const Vec2 g = settings_.gravity;
   const double nu = settings_.viscosity, rho0 = settings_.rest_density;
-  const double avc = settings_.artificial_viscosity * sound_speed_ * scene_.spacing;
+  const double avc = settings_.artificial_viscosity * sound_speed_ * setup_.spacing;
   const Index n = fluid_.size();
   if (nu <= 0.0 && avc <= 0.0) {
     parallel_for(n, [&](Index i) { fluid_.v[i] += dt * g; });
@@ -575,7 +576,7 @@ void Simulation::apply_nonpressure(double dt) {
   }
   std::vector<Vec2>& a_v = scratch_.a_p;  // reused as scratch: a_p is recomputed later
   a_v.resize(n);
-  const double eps = 0.01 * scene_.spacing * scene_.spacing;
+  const double eps = 0.01 * setup_.spacing * setup_.spacing;
   const bool work = has_moving_boundaries();
   parallel_for(n, [&](Index i) {
     const Vec2 xi = fluid_.x[i], vi = fluid_.v[i];
@@ -1087,7 +1088,7 @@ void Simulation::check_stability(const StepStats& st) const {
   auto fail = [&](const std::string& cause) {
     std::ostringstream os;
     if (st.step <= 0)  // settle() numbers its steps 0, -1, -2, ...
-      os << "unstable while settling (time.settle = " << scene_.time.settle << " s) at its step " << 1 - st.step
+      os << "unstable while settling (time.settle = " << setup_.time.settle << " s) at its step " << 1 - st.step
          << ", " << st.time << " s into it: " << cause;
     else
       os << "unstable at step " << st.step << ", t = " << st.time << " s: " << cause;
@@ -1104,7 +1105,7 @@ void Simulation::check_stability(const StepStats& st) const {
     if ((x.array() < lost_min_.array()).any() || (x.array() > lost_max_.array()).any()) {
       std::ostringstream os;
       os << "fluid particle " << fluid_.id[i] << " at (" << x.x() << ", " << x.y()
-         << ") left the scene's bounds by more than stability.bounds_margin = " << scene_.limits.bounds_margin
+         << ") left the scene's bounds by more than stability.bounds_margin = " << setup_.limits.bounds_margin
          << " scene sizes";
       fail(os.str());
     }
@@ -1112,20 +1113,20 @@ void Simulation::check_stability(const StepStats& st) const {
   // Walls that no longer hold the fluid (checked at frame times: a pass over every
   // particle and object).
   if (st.frame >= 0) {
-    const FluidInSolids leak = find_fluid_in_solids(scene_, fluid_.x, time_);
-    if (leak.count > 0 && 100.0 * leak.count > scene_.limits.max_leaked_percent * fluid_.size()) {
+    const FluidInSolids leak = find_fluid_in_solids(setup_, fluid_.x, time_);
+    if (leak.count > 0 && 100.0 * leak.count > setup_.limits.max_leaked_percent * fluid_.size()) {
       std::ostringstream os;
       os << leak.count << " of " << fluid_.size() << " fluid particles are past a wall's first sample layer (more than "
-         << "stability.max_leaked_percent = " << scene_.limits.max_leaked_percent << "%); the first, particle "
+         << "stability.max_leaked_percent = " << setup_.limits.max_leaked_percent << "%); the first, particle "
          << fluid_.id[leak.first] << ", is inside boundary \"" << leak.object << "\" at (" << leak.at.x() << ", "
          << leak.at.y() << "), behind its surface at (" << leak.surface.x() << ", " << leak.surface.y() << ")";
       fail(os.str());
     }
   }
-  if (st.density_error_percent > scene_.limits.max_error_percent) {
+  if (st.density_error_percent > setup_.limits.max_error_percent) {
     std::ostringstream os;
     os << "average compression error " << st.density_error_percent
-       << "% exceeds stability.max_error_percent = " << scene_.limits.max_error_percent << "%";
+       << "% exceeds stability.max_error_percent = " << setup_.limits.max_error_percent << "%";
     fail(os.str());
   }
 }

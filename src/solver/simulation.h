@@ -6,11 +6,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "scene/scene.h"
 #include "sph/kernel.h"
 #include "sph/neighbors.h"
 #include "sph/particles.h"
 #include "solver/settings.h"
+#include "solver/setup.h"
 #include "solver/stats.h"
 
 namespace sluice {
@@ -75,13 +75,13 @@ struct SimulationState {
 
 class Simulation {
  public:
-  explicit Simulation(const Scene& scene);
+  explicit Simulation(const SimulationSetup& setup);
 
   // Advances by one time step (Algorithm 2 for IISPH) and returns its statistics.
   // Throws SimulationUnstable when the state is no longer valid.
   StepStats step();
 
-  bool finished() const { return time_ >= scene_.time.duration; }
+  bool finished() const { return time_ >= setup_.time.duration; }
   double time() const { return time_; }
   long steps() const { return step_; }
   Index frame() const { return frame_; }           // last frame index reached (0 at t = 0)
@@ -94,7 +94,7 @@ class Simulation {
   SimulationState state() const;
   void restore(const SimulationState& s);
 
-  const Scene& scene() const { return scene_; }
+  const SimulationSetup& setup() const { return setup_; }
   const FluidParticles& fluid() const { return fluid_; }
   const BoundaryParticles& boundary() const { return boundary_; }
   const CubicSpline2D& kernel() const { return kernel_; }
@@ -170,7 +170,7 @@ class Simulation {
   void compute_volumes(const SpatialHashGrid& grid, const std::vector<Index>& which, std::vector<double>& volume) const;
   double max_boundary_speed() const;          // fastest moving sample at time_ (for Eq. 14)
 
-  Scene scene_;
+  SimulationSetup setup_;
   SolverSettings settings_;
   CubicSpline2D kernel_;
   double mass_;  // fluid particle mass rho0 h^2 [kg/m]

@@ -216,7 +216,7 @@ FrameBuilder::FrameBuilder(const ImageConfig& c, const Simulation& sim) : c_(c) 
 }
 
 FrameData FrameBuilder::build(const Simulation& sim, Index frame, const StepStats* last) {
-  const Scene& scene = sim.scene();
+  const SimulationSetup& scene = sim.setup();
   const FluidParticles& f = sim.fluid();
   const double dt = last ? last->dt : (scene.time.dt > 0 ? scene.time.dt : scene.time.dt_max);
   const double rho0 = scene.solver.rest_density;

@@ -1,0 +1,42 @@
+#pragma once
+// What a simulation is built from: its settings, the initial fluid particles, the
+// boundary samples and the objects they belong to, with each object's motion and the
+// geometry its leak check needs. Plain data: no JSON, no render or output settings.
+// The scene (src/scene) builds it from a scene file; tests may build one by hand.
+#include <string>
+#include <vector>
+
+#include "core/shapes.h"
+#include "core/types.h"
+#include "solver/motion.h"
+#include "solver/settings.h"
+
+namespace sluice {
+
+// One boundary object (a wall, a container, an obstacle). Its samples are
+// boundary_x[first, first + count).
+struct BoundaryObject {
+  std::string name;   // "name" key, or "<shape><index>"
+  std::string shape;  // box | polyline | polygon | circle | ellipse
+  bool moving = false;  // has a scripted motion; false: a wall at rest (volumes computed once)
+  Motion motion;        // pose over time; boundary_x holds the samples at rest (identity pose)
+  shapes::BoundaryShape geometry;  // the shape at rest (solid-side tests, e.g. leak checks)
+  Index first = 0;
+  Index count = 0;
+};
+
+struct SimulationSetup {
+  double spacing = 0;  // fluid particle spacing h [m]; kernel support is 2h
+  SolverSettings solver;
+  TimeSettings time;
+  StabilityLimits limits;
+
+  std::vector<Vec2> fluid_x, fluid_v;  // initial fluid particles
+  std::vector<Vec2> boundary_x;        // all boundary samples, at rest (identity pose)
+  std::vector<Index> boundary_object;  // object index of each boundary sample
+  std::vector<BoundaryObject> objects;
+
+  Vec2 bounds_min{0, 0}, bounds_max{0, 0};  // box around all particles at t = 0
+};
+
+}  // namespace sluice
