@@ -1,0 +1,215 @@
+#include "solver/simulation.h"
+
+#include <algorithm>
+
+#include "core/parallel.h"
+#include "solver/internal.h"
+#include "solver/pressure_kernels.h"
+
+namespace sluice {
+
+using namespace solver_detail;
+
+// ---------------------------------------------------------------------------------
+// IISPH pressure solver (chapter 3, Algorithm 2, relaxed Jacobi).
+//
+// With the pressure accelerations of Eq. 24, the PPE of Eq. 17 for fluid particle i is
+//   (Ap)_i = dt [ sum_f m_f (a_i - a_f) . grad W_if + gamma2 sum_b m_b (a_i - a_b) . grad W_ib ]
+//          = s_i = (rho0 - rho*_i) / dt                                      (Eq. 19, 20)
+// where rho*_i = rho_i + dt [ sum_f m_f v*_if . grad W_if + gamma2 sum_b m_b v*_ib . grad W_ib ]
+// (Eq. 16; the boundary particle enters with its own velocity, a_b = 0 for a wall).
+// The predicted density after the pressure update is rho*_i + dt (Ap)_i, so the
+// relative compression of Eq. 23 is 100 dt ((Ap)_i - s_i) / rho0 (the thesis writes
+// Eq. 23 without the factor dt because its A and s carry 1/dt).
+//
+// Diagonal (Eq. 22/26), derived for the chosen boundary method: writing
+//   a_i = p_i D_i + (terms without p_i),
+//   D_i = -(1/rho_i^2) (sum_f m_f grad W_if + c gamma3 grad_b_i) - E_i,
+// with c = 2 for mirroring (p_b/rho_b^2 = p_i/rho_i^2) and 1 otherwise, and for
+// extrapolation E_i = (gamma3 / rho0^2) sum_b m_b (W_bi / sum_f W_bf) grad W_ib, the
+// share of p_i in each p_b of Eq. 25. Each fluid neighbour f holds p_i through
+// a_f = ... - m_i (p_i/rho_i^2) grad W_fi, so
+//   a_ii = dt [ D_i . (sum_f m_f grad W_if + gamma2 grad_b_i) - (m_i^2/rho_i^2) sum_f |grad W_if|^2 ].
+// Eq. 26 as printed is c = 1 and E = 0 (boundary_diagonal = false). With pressure
+// boundaries p_b is an unknown of its own (prepare_solved_boundary): c = 1, E = 0, and the
+// iteration stops when the samples' average predicted compression is within the
+// tolerance too (st.avg_error_percent is the larger of the two averages).
+void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
+  const Index n = fluid_.size();
+  const SolverSettings& s = settings_;
+  const double rho0 = s.rest_density, g2 = s.gamma2, g3 = s.gamma3, omega = s.omega;
+  prepare_boundary_terms();
+  scratch_.s.resize(n);
+  scratch_.a_ii.resize(n);
+  scratch_.p_over_rho2.resize(n);
+  const bool mirror = s.boundary_pressure == BoundaryPressure::Mirroring;
+  const bool extrapolate = s.boundary_pressure == BoundaryPressure::Extrapolation;
+  const bool solved_boundary = s.boundary_pressure == BoundaryPressure::Solved;
+  // Boundary samples with a fluid neighbour (their rows of the PPE).
+  const Index active_samples = solved_boundary ? prepare_solved_boundary(dt) : 0;
+  const double c = (mirror && s.boundary_diagonal) ? 2.0 : 1.0;
+  const bool coupling = extrapolate && s.boundary_diagonal;
+  const bool thesis_init = s.pressure_init == PressureInit::Thesis;
+  const double vb_scale = boundary_velocity_in_source_ ? 1.0 : 0.0;
+
+  const Index block = jacobi_block_size();
+  if (block > 0) {
+    plan_jacobi_ranges();
+    scratch_.sweep_lag.resize(n);
+  }
+
+  // Source term s_i (Eq. 19), diagonal a_ii (Eq. 26), initial pressure p^(0) (Eq. 21),
+  // and when the fused Jacobi sweep can update i (sweep_lag_of).
+  parallel_for(n, [&](Index i) {
+    const Vec2 vi = fluid_.v[i];
+    const double rhoi = fluid_.rho[i];
+    Index jmin = i, jmax = i;
+    double div = 0.0, grad2 = 0.0;
+    Vec2 sum_grad = Vec2::Zero();
+    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
+      const Index j = ff_.j[k];
+      const Vec2 gw = ff_.grad[k].cast<double>();
+      jmin = std::min(jmin, j);
+      jmax = std::max(jmax, j);
+      div += (vi - fluid_.v[j]).dot(gw);
+      sum_grad += gw;
+      grad2 += gw.squaredNorm();
+    }
+    if (block > 0) scratch_.sweep_lag[i] = sweep_lag_of(i, jmin, jmax, block);
+    div *= mass_;
+    sum_grad *= mass_;
+    double div_b = 0.0;
+    Vec2 e = Vec2::Zero();
+    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
+      const Index b = fb_.j[k];
+      const double mb = rho0 * boundary_.volume[b];
+      div_b += mb * (vi - vb_scale * boundary_.v[b]).dot(fb_.grad[k].cast<double>());
+      if (coupling && scratch_.ext_wsum[b] > 0.0) e += (mb * fb_.w[k] / scratch_.ext_wsum[b]) * fb_.grad[k].cast<double>();
+    }
+    scratch_.s[i] = (rho0 - rhoi) / dt - (div + g2 * div_b);
+    const double inv_rho2 = 1.0 / (rhoi * rhoi);
+    const Vec2 d = -inv_rho2 * (sum_grad + (c * g3) * scratch_.grad_b[i]) - (g3 / (rho0 * rho0)) * e;
+    const double aii = dt * (d.dot(sum_grad + g2 * scratch_.grad_b[i]) - mass_ * mass_ * inv_rho2 * grad2);
+    scratch_.a_ii[i] = aii;
+    double p0 = kWarmStartFactor * fluid_.p[i];
+    if (thesis_init) p0 = aii != 0.0 ? std::max(omega * scratch_.s[i] / aii, 0.0) : 0.0;
+    fluid_.p[i] = p0;
+    scratch_.p_over_rho2[i] = p0 * inv_rho2;
+  });
+
+  scratch_.deferred.clear();
+  if (block > 0)  // the plain passes defer nothing
+    for (Index i = 0; i < n; ++i)
+      if (scratch_.sweep_lag[i] < 0) scratch_.deferred.push_back(i);
+  scratch_.err.resize(n);
+  scratch_.a_p.resize(n);
+  int l = 0;
+  double avg = 0.0;
+  const PressureTerms terms = pressure_terms(dt);
+  do {
+    update_boundary_pressure();
+    const double sum = jacobi_sweep(block, terms);
+    avg = n ? sum / n : 0.0;
+    // Pressure boundaries: the samples' constraints converge too (their own average), or
+    // their pressures lag the fluid's and stop being constraint forces.
+    if (solved_boundary && active_samples > 0) avg = std::max(avg, jacobi_update_boundary(terms) / active_samples);
+    ++l;
+  } while ((avg > s.tolerance_percent || l < s.min_iterations) && l < s.max_iterations);
+  // Integrate the accelerations of the final pressures ([Ihm+14a], Algorithm 1); the
+  // loop's a_p belong to the iterate before the last update.
+  update_boundary_pressure();
+  compute_pressure_acceleration();
+  if (has_moving_boundaries()) add_boundary_pressure_work(dt);
+  st.iterations = l;
+  st.avg_error_percent = avg;
+  st.max_error_percent = parallel_max(n, 0.0, [&](Index i) { return scratch_.err[i]; });
+}
+
+// Pressure boundaries (Band et al. 2018, "Pressure boundaries for implicit incompressible
+// SPH", ACM TOG 37(2)): the density constraint of each boundary sample with fluid
+// neighbours joins the PPE, so p_b is its Lagrange multiplier and the boundary term of
+// Eq. 24 becomes a constraint force, which does no work while the constraints hold.
+// The sample's counterparts of Eq. 19 and 22, with a_b = 0 (its motion is scripted):
+//   s_b = (rho0 - rho_b) / dt - sum_f m_f (v_b - v*_f) . grad W_bf,
+//   (Ap)_b = -dt sum_f m_f a_f . grad W_bf,
+//   a_bb = d(Ap)_b / dp_b = -dt gamma3 (V_b m / rho0) sum_f |grad W_bf|^2.
+Index Simulation::prepare_solved_boundary(double dt) {
+  const SolverSettings& s = settings_;
+  const double rho0 = s.rest_density, g1r = s.gamma1 * rho0, inv_rho0_2 = 1.0 / (rho0 * rho0);
+  const bool thesis_init = s.pressure_init == PressureInit::Thesis;
+  const Index nb = boundary_.size();
+  const double vb_scale = boundary_velocity_in_source_ ? 1.0 : 0.0;
+  scratch_.bnd_s.resize(nb);
+  scratch_.bnd_aii.resize(nb);
+  parallel_for(nb, [&](Index b) {
+    double wsum = 0.0, div = 0.0, grad2 = 0.0, lumped = 0.0;
+    for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) {
+      const Index f = bf_.j[k];
+      const Vec2 gw = bf_.grad[k].cast<double>();
+      wsum += bf_.w[k];
+      div += (vb_scale * boundary_.v[b] - fluid_.v[f]).dot(gw);
+      grad2 += gw.squaredNorm();
+      lumped += gw.dot(scratch_.grad_b[f]);
+    }
+    // rho_b as in boundary_density, summed in the same pass over the sample's pairs.
+    const double sb = (rho0 - (mass_ * wsum + g1r)) / dt - mass_ * div;
+    // The row's diagonal, or its lumped sum over all samples that share a fluid neighbour
+    // (dt gamma3 m / rho0^2 sum_f grad W_bf . grad_b_f) when larger: samples denser than
+    // the fluid, or a thin plate sampled on both sides, are near-duplicate constraints,
+    // and Jacobi with the plain diagonal overshoots on them by their number and diverges.
+    const double abb = std::min(-dt * s.gamma3 * boundary_.volume[b] / rho0 * mass_ * grad2,
+                                dt * s.gamma3 * mass_ / (rho0 * rho0) * lumped);
+    scratch_.bnd_s[b] = sb;
+    scratch_.bnd_aii[b] = abb;
+    double p0 = abb != 0.0 ? kWarmStartFactor * boundary_.p[b] : 0.0;
+    if (thesis_init) p0 = abb != 0.0 ? std::max(s.omega * sb / abb, 0.0) : 0.0;
+    boundary_.p[b] = p0;
+    scratch_.pb_over_rho2[b] = p0 * inv_rho0_2;
+  });
+  return static_cast<Index>(parallel_sum(nb, [&](Index b) { return scratch_.bnd_aii[b] != 0.0 ? 1.0 : 0.0; }));
+}
+
+// Eq. 21 for every boundary sample, from the accelerations a_p of the iteration (all
+// computed before: the sweep has finished), clamped at zero like the fluid's. Returns
+// the sum of the samples' predicted compression (Eq. 23) at these accelerations.
+double Simulation::jacobi_update_boundary(const PressureTerms& t) {
+  const double inv_rho0_2 = 1.0 / (settings_.rest_density * settings_.rest_density);
+  return parallel_sum(boundary_.size(), [&](Index b) {
+    const double abb = scratch_.bnd_aii[b];
+    if (abb == 0.0) return 0.0;  // no fluid neighbour: p_b stays 0
+    double ap = 0.0;
+    for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) ap -= scratch_.a_p[bf_.j[k]].dot(bf_.grad[k].cast<double>());
+    ap *= t.dt * t.mass;
+    const double p = std::max(boundary_.p[b] + t.omega / abb * (scratch_.bnd_s[b] - ap), 0.0);
+    boundary_.p[b] = p;
+    scratch_.pb_over_rho2[b] = p * inv_rho0_2;
+    return std::max(t.err_scale * (ap - scratch_.bnd_s[b]), 0.0);
+  });
+}
+
+// Eq. 24: a_i = - sum_f m_f (p_i/rho_i^2 + p_f/rho_f^2) grad W_if
+//               - gamma3 sum_b m_b (p_i/rho_i^2 + p_b/rho_b^2) grad W_ib.
+// Mirroring (4.2.2) sets p_b/rho_b^2 = p_i/rho_i^2, zero pressure (4.2.3) p_b = 0, so
+// their boundary sum is c gamma3 (p_i/rho_i^2) grad_b_i with c = 2 or 1.
+Simulation::PressureTerms Simulation::pressure_terms(double dt) const {
+  const SolverSettings& s = settings_;
+  PressureTerms t;
+  t.mass = mass_;
+  t.c_gamma3 = (s.boundary_pressure == BoundaryPressure::Mirroring ? 2.0 : 1.0) * s.gamma3;
+  t.gamma3_rho0 = s.gamma3 * s.rest_density;
+  t.boundary_field =
+      s.boundary_pressure == BoundaryPressure::Extrapolation || s.boundary_pressure == BoundaryPressure::Solved;
+  t.gamma2 = s.gamma2;
+  t.omega = s.omega;
+  t.dt = dt;
+  t.err_scale = 100.0 * dt / s.rest_density;
+  return t;
+}
+
+void Simulation::compute_pressure_acceleration() {
+  const PressureTerms t = pressure_terms(0.0);
+  scratch_.a_p.resize(fluid_.size());
+  parallel_for(fluid_.size(), [&](Index i) { scratch_.a_p[i] = pressure_acceleration_of(i, t); });
+}
+
+}  // namespace sluice

@@ -1,0 +1,149 @@
+#include "solver/simulation.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <omp.h>
+
+#include "core/parallel.h"
+#include "solver/pressure_kernels.h"
+
+namespace sluice {
+
+namespace {
+
+// Particles per block of the fused Jacobi sweep (see jacobi_sweep): a block's pairs
+// (about 2 MB at 16384) stay in cache until its updates read them again.
+constexpr Index kSweepBlock = 16384;
+// An update waits for at most this many blocks after its own; particles with a
+// neighbour further ahead are deferred.
+constexpr int kMaxSweepLag = 2;
+// The fused sweep is used when the iteration's arrays exceed this many bytes, three
+// quarters of the 32 MB L3 of the machine it was measured on (see jacobi_block_size).
+// Elsewhere the crossover moves with the cache; either way the bits are the same.
+constexpr double kFuseAboveBytes = 24.0 * 1024 * 1024;
+
+}  // namespace
+
+// The fused Jacobi sweep pays only when the solver's arrays crowd the last-level cache;
+// well inside it, the two plain passes are as fast or faster. Pressure phase of the
+// 0.5 m layer (`sluice bench` on the widened column, 20 steps), fused against plain,
+// median of the per-round ratios of 7 to 9 interleaved rounds, with the sweep in ranges:
+// 2 threads: 10k (about 3 MB) 1.07, 30k (9 MB) 0.97, 60k (19 MB) 0.98, 100k (31 MB) 0.89
+// and 0.85; 1 thread: 30k 1.05, 100k 0.80. (The 1M layer and the 130k dam break, 41 MB,
+// gain more: docs/performance.md.) Returns the block size, 0 for the two plain passes.
+Index Simulation::jacobi_block_size() const {
+  if (jacobi_block_ != 0) return std::max<Index>(jacobi_block_, 0);
+  // Bytes the iteration streams: 12 per fluid pair (index and float gradient) and about
+  // 160 per particle (pressures, accelerations, source, diagonal, boundary sums).
+  const double bytes = 12.0 * static_cast<double>(ff_.pairs()) + 160.0 * fluid_.size();
+  return bytes < kFuseAboveBytes ? 0 : kSweepBlock;
+}
+
+// Ranges of the fused sweep: one contiguous index range per thread, cut so that each
+// holds about the same work (fluid pairs, plus 4 per particle for the per-particle part).
+void Simulation::plan_jacobi_ranges() {
+  const Index n = fluid_.size();
+  const Index ranges = jacobi_ranges_ > 0 ? jacobi_ranges_ : static_cast<Index>(omp_get_max_threads());
+  auto work = [&](Index i) { return static_cast<double>(ff_.offset[i]) + 4.0 * i; };
+  const double total = work(n);
+  std::vector<Index>& range = scratch_.sweep_range;
+  range.assign(static_cast<size_t>(ranges) + 1, n);
+  range[0] = 0;
+  for (Index r = 1; r < ranges; ++r) {
+    const double target = total * r / ranges;
+    Index lo = range[r - 1], hi = n;  // first i in [lo, n] with work(i) >= target
+    while (lo < hi) {
+      const Index mid = lo + (hi - lo) / 2;
+      if (work(mid) < target)
+        lo = mid + 1;
+      else
+        hi = mid;
+    }
+    range[r] = lo;
+  }
+}
+
+// How many blocks after its own particle i's update must wait for in the fused sweep:
+// the block of its last fluid neighbour jmax (earlier blocks of the same range are
+// done by then). -1 (deferred) when a neighbour lies in another range, whose thread may
+// not have computed its acceleration yet, or more than kMaxSweepLag blocks ahead, by
+// when i's data have left the cache. jmin, jmax: i's smallest and largest neighbour
+// index (i itself when it has none).
+std::int8_t Simulation::sweep_lag_of(Index i, Index jmin, Index jmax, Index block) const {
+  const std::vector<Index>& range = scratch_.sweep_range;
+  const Index r = static_cast<Index>(std::upper_bound(range.begin(), range.end(), i) - range.begin()) - 1;
+  const Index begin = range[r], end = range[r + 1];
+  if (jmin < begin || jmax >= end) return -1;
+  const Index lag = (jmax - begin) / block - (i - begin) / block;
+  return lag <= kMaxSweepLag ? static_cast<std::int8_t>(std::max<Index>(lag, 0)) : std::int8_t(-1);
+}
+
+// One Jacobi iteration over all fluid particles: the accelerations of Eq. 24 from the
+// current pressures, then the updates of Eq. 20, 21 and 23; returns the sum of Eq. 23.
+//
+// With block = 0, two plain passes. Otherwise fused: each thread sweeps its own range
+// (sweep_range) block by block, computing a block's accelerations and at once updating
+// the particles whose last fluid neighbour lies in that block, while their pairs and
+// accelerations are still in cache; after all ranges are done, the deferred particles
+// (see sweep_lag_of) are updated. The result is the same as two full passes, bit for
+// bit: an update reads only accelerations, and every one it reads is computed before
+// it, whatever the thread count. And no acceleration reads a pressure updated in the
+// same iteration: a particle updated early has all its neighbours in its own range and
+// in blocks already done (neighbour lists are symmetric).
+double Simulation::jacobi_sweep(Index block, const PressureTerms& t) {
+  const Index n = fluid_.size();
+  if (block == 0) {
+    // Two plain passes: all accelerations, then all updates (summed as they go).
+    compute_pressure_acceleration();
+    return parallel_sum(n, [&](Index i) {
+      jacobi_update_of(i, t);
+      return scratch_.err[i];
+    });
+  }
+  const std::vector<Index>& range = scratch_.sweep_range;
+  const Index ranges = static_cast<Index>(range.size()) - 1;
+  const Index nd = static_cast<Index>(scratch_.deferred.size());
+  // Sum of Eq. 23 over fixed blocks of kReduceBlock particles, added in block order as
+  // in parallel_sum: the same bits whatever the sweep's blocks, ranges and threads.
+  const Index sum_blocks = (n + kReduceBlock - 1) / kReduceBlock;
+  std::vector<double>& partial = scratch_.err_partial;
+  partial.assign(static_cast<size_t>(sum_blocks), 0.0);
+  // A thread may sweep several ranges one after the other (fewer threads than ranges):
+  // a range's early updates touch no particle of another range, so that is safe too.
+#pragma omp parallel if (n >= kParallelMin)
+  {
+#pragma omp for schedule(dynamic, 1)
+    for (Index r = 0; r < ranges; ++r) sweep_range(range[r], range[r + 1], block, t);
+#pragma omp for schedule(dynamic, kForChunk)
+    for (Index k = 0; k < nd; ++k) jacobi_update_of(scratch_.deferred[k], t);
+#pragma omp for schedule(dynamic, 1)
+    for (Index b = 0; b < sum_blocks; ++b) {
+      const Index end = std::min(n, (b + 1) * kReduceBlock);
+      double sum = 0.0;
+      for (Index i = b * kReduceBlock; i < end; ++i) sum += scratch_.err[i];
+      partial[static_cast<size_t>(b)] = sum;
+    }
+  }
+  double total = 0.0;
+  for (double sum : partial) total += sum;
+  return total;
+}
+
+// One range of the fused sweep, blocks in order: block c's accelerations, then the
+// updates of the particles of blocks c - kMaxSweepLag .. c that waited for block c.
+void Simulation::sweep_range(Index begin, Index end, Index block, const PressureTerms& t) {
+  const std::vector<std::int8_t>& lag = scratch_.sweep_lag;
+  // (Bounds computed so that no sum exceeds end: a block may be as large as Index allows.)
+  for (Index c = begin, c_end = begin; c < end; c = c_end) {
+    c_end = end - c > block ? c + block : end;
+    for (Index i = c; i < c_end; ++i) scratch_.a_p[i] = pressure_acceleration_of(i, t);
+    for (int d = kMaxSweepLag; d >= 0; --d) {
+      if (static_cast<std::int64_t>(d) * block > c - begin) continue;  // d blocks back is before the range
+      const Index b0 = c - d * block, b1 = d == 0 ? c_end : b0 + block;
+      for (Index i = b0; i < b1; ++i)
+        if (lag[i] == d) jacobi_update_of(i, t);
+    }
+  }
+}
+
+}  // namespace sluice

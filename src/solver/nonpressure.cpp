@@ -1,0 +1,55 @@
+#include "solver/simulation.h"
+
+#include "core/parallel.h"
+
+namespace sluice {
+
+// v* = v + dt (a_v + g): the viscosity of Eq. 12 and Monaghan's artificial viscosity
+// (1992, Eq. 4.1; the thesis has none), against fluid and boundary neighbours (boundary
+// neighbours with their own velocity, m_b = rho0 V_b, rho_b = rho0):
+//   a_i += -sum_j m_j Pi_ij grad W_ij,  Pi_ij = -alpha c h mu_ij / rho_ij for v_ij . x_ij < 0,
+//   mu_ij = v_ij . x_ij / (|x_ij|^2 + 0.01 h^2),  rho_ij = (rho_i + rho_j) / 2.
+// With both off the neighbour pass is skipped. The boundary pairs' share of a_v, times
+// the boundary velocity, is the boundaries' work on the fluid (scratch_.work).
+void Simulation::apply_nonpressure(double dt) {
+  const Vec2 g = settings_.gravity;
+  const double nu = settings_.viscosity, rho0 = settings_.rest_density;
+  const double avc = settings_.artificial_viscosity * sound_speed_ * setup_.spacing;
+  const Index n = fluid_.size();
+  if (nu <= 0.0 && avc <= 0.0) {
+    parallel_for(n, [&](Index i) { fluid_.v[i] += dt * g; });
+    return;
+  }
+  std::vector<Vec2>& a_v = scratch_.a_p;  // reused as scratch: a_p is recomputed later
+  a_v.resize(n);
+  const double eps = 0.01 * setup_.spacing * setup_.spacing;
+  const bool work = has_moving_boundaries();
+  parallel_for(n, [&](Index i) {
+    const Vec2 xi = fluid_.x[i], vi = fluid_.v[i];
+    const double rhoi = fluid_.rho[i];
+    Vec2 lap = Vec2::Zero(), art = Vec2::Zero();
+    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
+      const Index j = ff_.j[k];
+      const Vec2 xij = xi - fluid_.x[j], vij = vi - fluid_.v[j], gw = ff_.grad[k].cast<double>();
+      const double r2 = xij.squaredNorm() + eps, vx = vij.dot(xij);
+      lap += (mass_ / fluid_.rho[j]) * (xij.dot(gw) / r2) * vij;
+      if (vx < 0.0) art += (mass_ * vx / (r2 * 0.5 * (rhoi + fluid_.rho[j]))) * gw;
+    }
+    Vec2 acc = 2.0 * nu * lap + avc * art;
+    double w = 0.0;
+    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
+      const Index b = fb_.j[k];
+      const Vec2 xib = xi - boundary_.x[b], vib = vi - boundary_.v[b], gw = fb_.grad[k].cast<double>();
+      const double r2 = xib.squaredNorm() + eps, vx = vib.dot(xib), vb = boundary_.volume[b];
+      Vec2 a = (2.0 * nu * vb * (xib.dot(gw) / r2)) * vib;
+      if (vx < 0.0) a += (avc * rho0 * vb * vx / (r2 * 0.5 * (rhoi + rho0))) * gw;
+      acc += a;
+      if (work) w += a.dot(boundary_.v[b]);
+    }
+    a_v[i] = acc;
+    if (work) scratch_.work[i] += dt * mass_ * w;
+  });
+  parallel_for(n, [&](Index i) { fluid_.v[i] += dt * (a_v[i] + g); });
+}
+
+}  // namespace sluice
