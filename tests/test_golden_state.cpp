@@ -44,6 +44,7 @@ struct Config {
   const char* name;
   const char* scene;
   std::vector<std::string> set;
+  Index sweep_block = 0;  // > 0: the fused Jacobi sweep with blocks of this many particles, 3 ranges
 };
 
 const std::vector<Config>& configs() {
@@ -58,6 +59,7 @@ const std::vector<Config>& configs() {
       {"iisph_no_gradient_correction", kDamBreak, {"solver.gradient_correction=false"}},
       {"iisph_viscous", kDamBreak, {"solver.viscosity=1e-3", "solver.artificial_viscosity=0"}},
       {"iisph_settled", kDamBreak, {"time.settle=0.1"}},
+      {"iisph_fused_sweep", kDamBreak, {}, 16},
       {"wcsph_solved", kDamBreak, {"solver.type=wcsph", "time.dt=null"}},
       {"wcsph_extrapolation", kDamBreak, {"solver.type=wcsph", "time.dt=null", "solver.boundary_pressure=extrapolation"}},
       {"iisph_moving", kMoving, {}},
@@ -88,6 +90,7 @@ std::map<std::string, std::string> read_table() {
 std::string run_hash(const Config& c, int threads) {
   const test::ThreadCount tc(threads);
   Simulation sim(test::scene_from_json(c.scene, c.set));
+  if (c.sweep_block > 0) sim.set_jacobi_sweep(c.sweep_block, 3);
   while (!sim.finished()) sim.step();
   return hex(test::state_hash(sim));
 }

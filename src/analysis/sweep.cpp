@@ -85,7 +85,8 @@ SweepRun run_sweep_point(const Scene& scene, const std::vector<std::string>& set
       dt_sum += st.dt;
       r.min_dt = std::min(r.min_dt, st.dt);
       r.max_density_error = std::max(r.max_density_error, st.density_error_percent);
-      const double ms[6] = {st.ms_neighbors, st.ms_nonpressure, st.ms_pressure, st.ms_integrate, st.ms_total, st.ms_boundary};
+      const double ms[6] = {st.ms(Phase::Neighbors), st.ms(Phase::NonPressure), st.ms(Phase::Pressure),
+                            st.ms(Phase::Integrate), st.ms_total, st.ms(Phase::Boundary)};
       for (int k = 0; k < 6; ++k) r.ms_phase[k] += ms[k];
     }
   } catch (const SimulationUnstable& e) {

@@ -119,7 +119,8 @@ void put_step(Writer& w, const StepStats& s) {
     w.put(d);
   w.put(s.fluid_particles);
   w.put(s.frame);
-  for (double d : {s.ms_neighbors, s.ms_nonpressure, s.ms_pressure, s.ms_integrate, s.ms_total, s.ms_boundary})
+  for (double d : {s.ms(Phase::Neighbors), s.ms(Phase::NonPressure), s.ms(Phase::Pressure), s.ms(Phase::Integrate),
+                   s.ms_total, s.ms(Phase::Boundary)})
     w.put(d);
 }
 
@@ -137,7 +138,8 @@ void get_step(Reader& r, StepStats& s) {
     r.get(*d, "last step");
   r.get(s.fluid_particles, "last step");
   r.get(s.frame, "last step");
-  for (double* d : {&s.ms_neighbors, &s.ms_nonpressure, &s.ms_pressure, &s.ms_integrate, &s.ms_total, &s.ms_boundary})
+  for (double* d : {&s.ms(Phase::Neighbors), &s.ms(Phase::NonPressure), &s.ms(Phase::Pressure),
+                    &s.ms(Phase::Integrate), &s.ms_total, &s.ms(Phase::Boundary)})
     r.get(*d, "last step");
 }
 

@@ -52,30 +52,19 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
   const bool thesis_init = s.pressure_init == PressureInit::Thesis;
   const double vb_scale = boundary_velocity_in_source_ ? 1.0 : 0.0;
 
-  const Index block = jacobi_block_size();
-  if (block > 0) {
-    plan_jacobi_ranges();
-    scratch_.sweep_lag.resize(n);
-  }
-
-  // Source term s_i (Eq. 19), diagonal a_ii (Eq. 26), initial pressure p^(0) (Eq. 21),
-  // and when the fused Jacobi sweep can update i (sweep_lag_of).
+  // Source term s_i (Eq. 19), diagonal a_ii (Eq. 26), initial pressure p^(0) (Eq. 21).
   parallel_for(n, [&](Index i) {
     const Vec2 vi = fluid_.v[i];
     const double rhoi = fluid_.rho[i];
-    Index jmin = i, jmax = i;
     double div = 0.0, grad2 = 0.0;
     Vec2 sum_grad = Vec2::Zero();
     for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
       const Index j = ff_.j[k];
       const Vec2 gw = ff_.grad[k].cast<double>();
-      jmin = std::min(jmin, j);
-      jmax = std::max(jmax, j);
       div += (vi - fluid_.v[j]).dot(gw);
       sum_grad += gw;
       grad2 += gw.squaredNorm();
     }
-    if (block > 0) scratch_.sweep_lag[i] = sweep_lag_of(i, jmin, jmax, block);
     div *= mass_;
     sum_grad *= mass_;
     double div_b = 0.0;
@@ -97,10 +86,7 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
     scratch_.p_over_rho2[i] = p0 * inv_rho2;
   });
 
-  scratch_.deferred.clear();
-  if (block > 0)  // the plain passes defer nothing
-    for (Index i = 0; i < n; ++i)
-      if (scratch_.sweep_lag[i] < 0) scratch_.deferred.push_back(i);
+  const Index block = plan_jacobi_sweep();  // how the loop's sweeps are scheduled (jacobi_sweep.cpp)
   scratch_.err.resize(n);
   scratch_.a_p.resize(n);
   int l = 0;

@@ -39,6 +39,29 @@ Index Simulation::jacobi_block_size() const {
   return bytes < kFuseAboveBytes ? 0 : kSweepBlock;
 }
 
+// The schedule of this step's Jacobi sweeps: the block size (0: two plain passes) and,
+// for the fused sweep, its ranges, each particle's lag (sweep_lag_of) and the deferred
+// particles. Only the speed depends on it, never the bits.
+Index Simulation::plan_jacobi_sweep() {
+  const Index block = jacobi_block_size();
+  scratch_.deferred.clear();
+  if (block == 0) return 0;
+  const Index n = fluid_.size();
+  plan_jacobi_ranges();
+  scratch_.sweep_lag.resize(n);
+  parallel_for(n, [&](Index i) {
+    Index jmin = i, jmax = i;
+    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
+      jmin = std::min(jmin, ff_.j[k]);
+      jmax = std::max(jmax, ff_.j[k]);
+    }
+    scratch_.sweep_lag[i] = sweep_lag_of(i, jmin, jmax, block);
+  });
+  for (Index i = 0; i < n; ++i)
+    if (scratch_.sweep_lag[i] < 0) scratch_.deferred.push_back(i);
+  return block;
+}
+
 // Ranges of the fused sweep: one contiguous index range per thread, cut so that each
 // holds about the same work (fluid pairs, plus 4 per particle for the per-particle part).
 void Simulation::plan_jacobi_ranges() {

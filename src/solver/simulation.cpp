@@ -168,45 +168,47 @@ void Simulation::settle() {
 
 void Simulation::advance(double dt, StepStats& st, bool settling) {
   if (has_moving_boundaries()) scratch_.work.assign(static_cast<size_t>(fluid_.size()), 0.0);
-  if (has_moving_boundaries() && !settling) {
+  for (const Phase phase : kPhases) {
+    if (phase == Phase::Boundary && (settling || !has_moving_boundaries())) continue;  // its time stays 0
     const Stopwatch t;
-    move_boundaries(dt);
-    update_boundary_volumes();
-    st.ms_boundary = t.ms();
+    run_phase(phase, dt, st);
+    st.ms(phase) = t.ms();
   }
-  {
-    // Algorithm 2's first loop: neighbours and density (with the periodic spatial sort).
-    const Stopwatch t;
-    if ((step_ + settle_steps_) % kReorderEvery == 0) reorder_fluid();
-    find_neighbors_phase();
-    compute_density();
-    st.ms_neighbors = t.ms();
-  }
-  {
-    const Stopwatch t;
-    const Index n = fluid_.size();
-    const double rho0 = settings_.rest_density;
-    st.density_error_percent =
-        n ? parallel_sum(n, [&](Index i) { return compression_percent(fluid_.rho[i], rho0); }) / n : 0.0;
-    apply_nonpressure(dt);
-    st.ms_nonpressure = t.ms();
-  }
-  {
-    const Stopwatch t;
-    if (settings_.type == SolverType::IISPH)
-      solve_pressure_iisph(dt, st);
-    else
-      solve_pressure_wcsph(dt, st);
-    st.ms_pressure = t.ms();
-  }
-  {
-    const Stopwatch t;
-    integrate(dt);
-    const Index n = fluid_.size();
-    const double vmax = std::sqrt(parallel_max(n, 0.0, [&](Index i) { return fluid_.v[i].squaredNorm(); }));
-    st.max_cfl = vmax * dt / setup_.spacing;
-    measure_energy(st);
-    st.ms_integrate = t.ms();
+}
+
+void Simulation::run_phase(Phase phase, double dt, StepStats& st) {
+  switch (phase) {
+    case Phase::Boundary:  // chapter 4: scripted poses, then the volumes of 4.1 where they can change
+      move_boundaries(dt);
+      update_boundary_volumes();
+      break;
+    case Phase::Neighbors:  // Algorithm 2's first loop: neighbours and density (with the periodic spatial sort)
+      if ((step_ + settle_steps_) % kReorderEvery == 0) reorder_fluid();
+      find_neighbors_phase();
+      compute_density();
+      break;
+    case Phase::NonPressure: {  // Eq. 15 at the step's start, then Eq. 12 and gravity
+      const Index n = fluid_.size();
+      const double rho0 = settings_.rest_density;
+      st.density_error_percent =
+          n ? parallel_sum(n, [&](Index i) { return compression_percent(fluid_.rho[i], rho0); }) / n : 0.0;
+      apply_nonpressure(dt);
+      break;
+    }
+    case Phase::Pressure:
+      if (settings_.type == SolverType::IISPH)
+        solve_pressure_iisph(dt, st);
+      else
+        solve_pressure_wcsph(dt, st);
+      break;
+    case Phase::Integrate: {  // semi-implicit Euler, then Eq. 14's CFL number and the energies
+      integrate(dt);
+      const Index n = fluid_.size();
+      const double vmax = std::sqrt(parallel_max(n, 0.0, [&](Index i) { return fluid_.v[i].squaredNorm(); }));
+      st.max_cfl = vmax * dt / setup_.spacing;
+      measure_energy(st);
+      break;
+    }
   }
 }
 

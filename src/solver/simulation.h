@@ -130,6 +130,7 @@ class Simulation {
   // Phases of a step, in the order of Algorithm 2.
   double choose_time_step() const;
   void advance(double dt, StepStats& st, bool settling);  // one step of Algorithm 2 without time bookkeeping
+  void run_phase(Phase phase, double dt, StepStats& st);  // one phase of it
   void settle();                                          // TimeSettings::settle, before t = 0
   void measure_energy(StepStats& st) const;
   void find_neighbors_phase();
@@ -157,6 +158,7 @@ class Simulation {
   double jacobi_update_boundary(const PressureTerms& t);  // Eq. 21 for every boundary sample's p_b
   Vec2 pressure_acceleration_of(Index i, const PressureTerms& t) const;  // Eq. 24 for one particle
   void jacobi_update_of(Index i, const PressureTerms& t);                 // Eq. 20, 21, 23 for one particle
+  Index plan_jacobi_sweep();  // block size (0: plain passes), ranges, lags, deferred particles
   Index jacobi_block_size() const;
   void plan_jacobi_ranges();                                  // scratch_.sweep_range
   std::int8_t sweep_lag_of(Index i, Index jmin, Index jmax, Index block) const;

@@ -1,8 +1,19 @@
 #pragma once
 // What one simulation step reports; one row of stats.csv.
+#include <array>
+#include <cstddef>
+
 #include "core/types.h"
 
 namespace sluice {
+
+// The phases of a step in the order of Algorithm 2 (Boundary: the scripted poses of
+// moving boundaries, their grid and the volume updates of 4.1; it runs only when a
+// scene has moving boundaries).
+enum class Phase { Boundary, Neighbors, NonPressure, Pressure, Integrate };
+inline constexpr std::size_t kPhaseCount = 5;
+inline constexpr std::array<Phase, kPhaseCount> kPhases = {Phase::Boundary, Phase::Neighbors, Phase::NonPressure,
+                                                           Phase::Pressure, Phase::Integrate};
 
 struct StepStats {
   long step = 0;               // 1-based step number
@@ -21,9 +32,11 @@ struct StepStats {
   double kinetic_energy = 0, potential_energy = 0, mechanical_energy = 0, boundary_work = 0;
   Index fluid_particles = 0;
   Index frame = -1;            // frame index when the step landed on a frame time, else -1
-  // wall-clock milliseconds per phase
-  // (ms_boundary: moving boundaries: poses, their grid and the volume updates of 4.1)
-  double ms_neighbors = 0, ms_nonpressure = 0, ms_pressure = 0, ms_integrate = 0, ms_total = 0, ms_boundary = 0;
+  std::array<double, kPhaseCount> phase_ms{};  // wall-clock milliseconds per phase
+  double ms_total = 0;                         // the whole step
+
+  double& ms(Phase p) { return phase_ms[static_cast<std::size_t>(p)]; }
+  double ms(Phase p) const { return phase_ms[static_cast<std::size_t>(p)]; }
 };
 
 }  // namespace sluice
