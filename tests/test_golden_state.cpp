@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/probe.h"
 #include "solver/simulation.h"
 #include "test_util.h"
 
@@ -90,7 +91,7 @@ std::map<std::string, std::string> read_table() {
 std::string run_hash(const Config& c, int threads) {
   const test::ThreadCount tc(threads);
   Simulation sim(test::scene_from_json(c.scene, c.set));
-  if (c.sweep_block > 0) sim.set_jacobi_sweep(c.sweep_block, 3);
+  if (c.sweep_block > 0) SolverProbe(sim).set_jacobi_sweep(c.sweep_block, 3);
   while (!sim.finished()) sim.step();
   return hex(test::state_hash(sim));
 }

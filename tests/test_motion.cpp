@@ -5,8 +5,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "solver/motion.h"
 #include "core/shapes.h"
+#include "solver/motion.h"
+#include "solver/probe.h"
 #include "test_util.h"
 
 namespace sluice {
@@ -228,7 +229,7 @@ double density_error_ahead_of_plate(bool velocity_in_source) {
     "boundaries": [{"name": "plate", "shape": "polygon", "points": [[0.4, 0.2], [0.5, 0.2], [0.5, 0.8], [0.4, 0.8]],
                     "motion": {"type": "translation", "velocity": [1.5, 0]}}]})");
   Simulation sim(scene);
-  sim.set_boundary_velocity_in_source(velocity_in_source);
+  SolverProbe(sim).set_boundary_velocity_in_source(velocity_in_source);
   double sum = 0;
   long count = 0;
   while (!sim.finished()) {
@@ -272,7 +273,7 @@ TEST(MovingBoundaries, VolumeUpdatesEqualFromScratch) {
   std::vector<uint8_t> changed(v0.size(), 0);
   while (!sim.finished()) {
     sim.step();
-    const std::vector<double> ref = sim.boundary_volumes_from_scratch();
+    const std::vector<double> ref = SolverProbe(sim).boundary_volumes_from_scratch();
     const BoundaryParticles& b = sim.boundary();
     for (Index k = 0; k < b.size(); ++k) {
       ASSERT_EQ(b.volume[k], ref[k]) << "sample " << k << " at t = " << sim.time();

@@ -28,13 +28,49 @@ using namespace solver_detail;
 // with c = 2 for mirroring (p_b/rho_b^2 = p_i/rho_i^2) and 1 otherwise, and for
 // extrapolation E_i = (gamma3 / rho0^2) sum_b m_b (W_bi / sum_f W_bf) grad W_ib, the
 // share of p_i in each p_b of Eq. 25. Each fluid neighbour f holds p_i through
-// a_f = ... - m_i (p_i/rho_i^2) grad W_fi, so
-//   a_ii = dt [ D_i . (sum_f m_f grad W_if + gamma2 grad_b_i) - (m_i^2/rho_i^2) sum_f |grad W_if|^2 ].
+// a_f = ... - m_i (p_i/rho_i^2) grad W_fi (and, with extrapolation, through the p_b of
+// its walls: extrapolation_coupling), so
+//   a_ii = dt [ D_i . (sum_f m_f grad W_if + gamma2 grad_b_i) - (m_i^2/rho_i^2) sum_f |grad W_if|^2 ]
+//          (+ the extrapolation coupling).
+// tests/test_pressure_system.cpp checks a_ii against the operator by finite differences.
 // Eq. 26 as printed is c = 1 and E = 0 (boundary_diagonal = false). With pressure
 // boundaries p_b is an unknown of its own (prepare_solved_boundary): c = 1, E = 0, and the
 // iteration stops when the samples' average predicted compression is within the
 // tolerance too (st.avg_error_percent is the larger of the two averages).
 void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
+  const Index active_samples = prepare_pressure_system(dt);
+  iterate_pressure(dt, active_samples, st);
+}
+
+// The share of p_i that reaches (Ap)_i through its fluid neighbours' extrapolated walls:
+// a_f holds -(gamma3 / rho0^2) m_b p_b grad W_fb and p_b (Eq. 25) holds p_i with weight
+// W_bi / sum_f W_bf, so d(Ap)_i / dp_i gains
+//   dt m (gamma3 / rho0^2) sum_b m_b (W_bi / sum_f W_bf) sum_f grad W_fb . grad W_if
+// (this returns the double sum). Zero away from walls; the samples b are i's own.
+double Simulation::extrapolation_coupling(Index i) const {
+  const double rho0 = settings_.rest_density;
+  double sum = 0.0;
+  for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
+    const Index b = fb_.j[k];
+    if (scratch_.ext_wsum[b] <= 0.0) continue;
+    const double weight = rho0 * boundary_.volume[b] * fb_.w[k] / scratch_.ext_wsum[b];
+    double dots = 0.0;
+    for (Index kf = ff_.offset[i]; kf < ff_.offset[i + 1]; ++kf) {
+      const Index f = ff_.j[kf];
+      for (Index kb = fb_.offset[f]; kb < fb_.offset[f + 1]; ++kb)
+        if (fb_.j[kb] == b) {
+          dots += fb_.grad[kb].cast<double>().dot(ff_.grad[kf].cast<double>());
+          break;
+        }
+    }
+    sum += weight * dots;
+  }
+  return sum;
+}
+
+// The set-up of the PPE: boundary terms, s_i (Eq. 19), a_ii (Eq. 26), p^(0) (Eq. 21),
+// and the samples' rows for pressure boundaries. Returns the samples with a row.
+Index Simulation::prepare_pressure_system(double dt) {
   const Index n = fluid_.size();
   const SolverSettings& s = settings_;
   const double rho0 = s.rest_density, g2 = s.gamma2, g3 = s.gamma3, omega = s.omega;
@@ -78,7 +114,8 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
     scratch_.s[i] = (rho0 - rhoi) / dt - (div + g2 * div_b);
     const double inv_rho2 = 1.0 / (rhoi * rhoi);
     const Vec2 d = -inv_rho2 * (sum_grad + (c * g3) * scratch_.grad_b[i]) - (g3 / (rho0 * rho0)) * e;
-    const double aii = dt * (d.dot(sum_grad + g2 * scratch_.grad_b[i]) - mass_ * mass_ * inv_rho2 * grad2);
+    double aii = dt * (d.dot(sum_grad + g2 * scratch_.grad_b[i]) - mass_ * mass_ * inv_rho2 * grad2);
+    if (coupling) aii += dt * mass_ * (g3 / (rho0 * rho0)) * extrapolation_coupling(i);
     scratch_.a_ii[i] = aii;
     double p0 = kWarmStartFactor * fluid_.p[i];
     if (thesis_init) p0 = aii != 0.0 ? std::max(omega * scratch_.s[i] / aii, 0.0) : 0.0;
@@ -86,7 +123,17 @@ void Simulation::solve_pressure_iisph(double dt, StepStats& st) {
     scratch_.p_over_rho2[i] = p0 * inv_rho2;
   });
 
-  const Index block = plan_jacobi_sweep();  // how the loop's sweeps are scheduled (jacobi_sweep.cpp)
+  return active_samples;
+}
+
+// Algorithm 2's solver loop: relaxed Jacobi sweeps (Eq. 24, then 20, 21, 23) until the
+// average predicted compression is within the tolerance, then the accelerations of the
+// final pressures.
+void Simulation::iterate_pressure(double dt, Index active_samples, StepStats& st) {
+  const Index n = fluid_.size();
+  const SolverSettings& s = settings_;
+  const bool solved_boundary = s.boundary_pressure == BoundaryPressure::Solved;
+  const Index block = plan_jacobi_sweep();  // how the sweeps are scheduled (jacobi_sweep.cpp)
   scratch_.err.resize(n);
   scratch_.a_p.resize(n);
   int l = 0;
@@ -155,6 +202,13 @@ Index Simulation::prepare_solved_boundary(double dt) {
   return static_cast<Index>(parallel_sum(nb, [&](Index b) { return scratch_.bnd_aii[b] != 0.0 ? 1.0 : 0.0; }));
 }
 
+// (Ap)_b of a pressure-boundary sample (prepare_solved_boundary) from the fluid's a_p.
+double Simulation::sample_operator_of(Index b, const PressureTerms& t) const {
+  double ap = 0.0;
+  for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) ap -= scratch_.a_p[bf_.j[k]].dot(bf_.grad[k].cast<double>());
+  return ap * (t.dt * t.mass);
+}
+
 // Eq. 21 for every boundary sample, from the accelerations a_p of the iteration (all
 // computed before: the sweep has finished), clamped at zero like the fluid's. Returns
 // the sum of the samples' predicted compression (Eq. 23) at these accelerations.
@@ -163,9 +217,7 @@ double Simulation::jacobi_update_boundary(const PressureTerms& t) {
   return parallel_sum(boundary_.size(), [&](Index b) {
     const double abb = scratch_.bnd_aii[b];
     if (abb == 0.0) return 0.0;  // no fluid neighbour: p_b stays 0
-    double ap = 0.0;
-    for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) ap -= scratch_.a_p[bf_.j[k]].dot(bf_.grad[k].cast<double>());
-    ap *= t.dt * t.mass;
+    const double ap = sample_operator_of(b, t);
     const double p = std::max(boundary_.p[b] + t.omega / abb * (scratch_.bnd_s[b] - ap), 0.0);
     boundary_.p[b] = p;
     scratch_.pb_over_rho2[b] = p * inv_rho0_2;

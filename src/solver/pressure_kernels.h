@@ -1,5 +1,5 @@
 #pragma once
-// Private to the solver: Eq. 24 and Eq. 20/21/23 for one particle, inlined into the
+// Private to the solver: Eq. 24, Eq. 20 and Eq. 20/21/23 for one particle, inlined into the
 // Jacobi sweep's loops (jacobi_sweep.cpp) and the pressure solvers (iisph.cpp).
 #include <algorithm>
 
@@ -29,11 +29,15 @@ namespace sluice {
 // Eq. 20 from the accelerations a_p of i and its fluid neighbours, the update of Eq. 21
 // with negative pressures clamped, and the predicted compression of Eq. 23 (stored in
 // err). Reads neighbours' a_p, writes only particle i.
-[[gnu::always_inline]] inline void Simulation::jacobi_update_of(Index i, const PressureTerms& t) {
+[[gnu::always_inline]] inline double Simulation::pressure_operator_of(Index i, const PressureTerms& t) const {
   const Vec2 ai = scratch_.a_p[i];
   double ap = 0.0;
   for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) ap += (ai - scratch_.a_p[ff_.j[k]]).dot(ff_.grad[k].cast<double>());
-  ap = t.dt * (t.mass * ap + t.gamma2 * ai.dot(scratch_.grad_b[i]));
+  return t.dt * (t.mass * ap + t.gamma2 * ai.dot(scratch_.grad_b[i]));
+}
+
+[[gnu::always_inline]] inline void Simulation::jacobi_update_of(Index i, const PressureTerms& t) {
+  const double ap = pressure_operator_of(i, t);
   const double si = scratch_.s[i], aii = scratch_.a_ii[i];
   const double p = aii != 0.0 ? std::max(fluid_.p[i] + t.omega / aii * (si - ap), 0.0) : 0.0;
   fluid_.p[i] = p;

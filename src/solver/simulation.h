@@ -104,21 +104,8 @@ class Simulation {
   // Speed c of the artificial viscosity (SolverSettings::sound_speed, resolved) [m/s].
   double sound_speed() const { return sound_speed_; }
 
-  // Test and benchmark hooks.
+  // Benchmark switch: the O(n m) neighbour search instead of the grid.
   void set_brute_force_neighbors(bool on) { brute_force_ = on; }
-  // Off: the boundary velocity is left out of the IISPH source term (Eq. 16/19), as in
-  // the thesis' own code; only to show that the term matters (tests).
-  void set_boundary_velocity_in_source(bool on) { boundary_velocity_in_source_ = on; }
-  // Particles per block of the fused Jacobi sweep (0: automatic, negative: two plain
-  // passes) and its number of ranges (0: one per thread). Only speed depends on them;
-  // tests check that the bits do not.
-  void set_jacobi_sweep(Index block, Index ranges = 0) {
-    jacobi_block_ = block;
-    jacobi_ranges_ = ranges;
-  }
-  // Volumes of section 4.1 of every boundary particle from scratch at the current
-  // positions (the reference for the incremental update of moving boundaries).
-  std::vector<double> boundary_volumes_from_scratch() const;
   bool has_moving_boundaries() const { return !moving_.empty(); }
   SolverSettings& solver_settings() { return settings_; }
 
@@ -127,6 +114,8 @@ class Simulation {
   void recompute_density();
 
  private:
+  friend class SolverProbe;  // tests' window into the pressure system (solver/probe.h)
+
   // Phases of a step, in the order of Algorithm 2.
   double choose_time_step() const;
   void advance(double dt, StepStats& st, bool settling);  // one step of Algorithm 2 without time bookkeeping
@@ -136,11 +125,15 @@ class Simulation {
   void find_neighbors_phase();
   void compute_density();                 // grad W per pair, then Eq. 13 + section 4.1
   void apply_nonpressure(double dt);      // Eq. 12 + gravity: v* = v + dt (a_v + g)
-  void solve_pressure_iisph(double dt, StepStats& st);
+  void solve_pressure_iisph(double dt, StepStats& st);   // prepare_pressure_system, then iterate_pressure
+  Index prepare_pressure_system(double dt);
+  double extrapolation_coupling(Index i) const;  // a_ii's share of p_i through the neighbours' p_b (Eq. 25)               // Eq. 19, 22/26, p^(0); returns the samples with a row
+  void iterate_pressure(double dt, Index active_samples, StepStats& st);  // Algorithm 2's solver loop
   void solve_pressure_wcsph(double dt, StepStats& st);
   void integrate(double dt);              // semi-implicit Euler (Algorithm 1, last loop)
   void check_stability(const StepStats& st) const;
   void reorder_fluid();
+  std::vector<double> boundary_volumes_from_scratch() const;  // section 4.1 for every sample (SolverProbe)
 
   // Building blocks of the pressure solvers.
   void correct_gradients();                   // pair gradients times (c_i + c_j) / 2
@@ -155,8 +148,10 @@ class Simulation {
     bool boundary_field;  // p_b from its own array (extrapolated or solved), not p_i or 0
   };
   PressureTerms pressure_terms(double dt) const;
+  double sample_operator_of(Index b, const PressureTerms& t) const;  // (Ap)_b of a pressure-boundary sample
   double jacobi_update_boundary(const PressureTerms& t);  // Eq. 21 for every boundary sample's p_b
   Vec2 pressure_acceleration_of(Index i, const PressureTerms& t) const;  // Eq. 24 for one particle
+  double pressure_operator_of(Index i, const PressureTerms& t) const;      // Eq. 20: (Ap)_i from a_p
   void jacobi_update_of(Index i, const PressureTerms& t);                 // Eq. 20, 21, 23 for one particle
   Index plan_jacobi_sweep();  // block size (0: plain passes), ranges, lags, deferred particles
   Index jacobi_block_size() const;

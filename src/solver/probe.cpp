@@ -1,0 +1,56 @@
+#include "solver/probe.h"
+
+#include <stdexcept>
+
+#include "core/parallel.h"
+#include "solver/pressure_kernels.h"
+
+namespace sluice {
+
+void SolverProbe::prepare_pressure_system(double dt) {
+  if (sim_.settings_.type != SolverType::IISPH) throw std::logic_error("SolverProbe: the pressure system is IISPH's");
+  StepStats st;
+  sim_.run_phase(Phase::Neighbors, dt, st);
+  sim_.run_phase(Phase::NonPressure, dt, st);
+  dt_ = dt;
+  active_samples_ = sim_.prepare_pressure_system(dt);
+}
+
+int SolverProbe::iterate_pressure() {
+  StepStats st;
+  sim_.iterate_pressure(dt_, active_samples_, st);
+  return st.iterations;
+}
+
+const std::vector<double>& SolverProbe::source() const { return sim_.scratch_.s; }
+const std::vector<double>& SolverProbe::diagonal() const { return sim_.scratch_.a_ii; }
+const std::vector<double>& SolverProbe::sample_source() const { return sim_.scratch_.bnd_s; }
+const std::vector<double>& SolverProbe::sample_diagonal() const { return sim_.scratch_.bnd_aii; }
+
+void SolverProbe::apply(const std::vector<double>& p, const std::vector<double>& pb, std::vector<double>& ap,
+                        std::vector<double>& apb) {
+  Simulation& s = sim_;
+  const Index n = s.fluid_.size(), nb = s.boundary_.size();
+  const bool solved = s.settings_.boundary_pressure == BoundaryPressure::Solved;
+  const double inv_rho0_2 = 1.0 / (s.settings_.rest_density * s.settings_.rest_density);
+  s.scratch_.p_over_rho2.resize(n);
+  for (Index i = 0; i < n; ++i) {
+    s.fluid_.p[i] = p[i];
+    s.scratch_.p_over_rho2[i] = p[i] / (s.fluid_.rho[i] * s.fluid_.rho[i]);
+  }
+  if (solved)
+    for (Index b = 0; b < nb; ++b) {
+      s.boundary_.p[b] = pb[b];
+      s.scratch_.pb_over_rho2[b] = pb[b] * inv_rho0_2;
+    }
+  s.update_boundary_pressure();
+  s.compute_pressure_acceleration();
+  const Simulation::PressureTerms t = s.pressure_terms(dt_);
+  ap.assign(static_cast<size_t>(n), 0.0);
+  for (Index i = 0; i < n; ++i) ap[i] = s.pressure_operator_of(i, t);
+  apb.assign(static_cast<size_t>(nb), 0.0);
+  if (solved)
+    for (Index b = 0; b < nb; ++b) apb[b] = s.sample_operator_of(b, t);
+}
+
+}  // namespace sluice

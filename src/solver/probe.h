@@ -1,0 +1,52 @@
+#pragma once
+// A window into a Simulation for tests and diagnostics (programs do not use it): the
+// pressure system of a step (source, diagonal and operator of Eq. 19-22/26), and the
+// switches with which tests show that a term matters or that the bits do not depend on
+// the Jacobi schedule.
+#include <vector>
+
+#include "solver/simulation.h"
+
+namespace sluice {
+
+class SolverProbe {
+ public:
+  explicit SolverProbe(Simulation& sim) : sim_(sim) {}
+
+  // The phases of a step up to the set-up of the pressure solve with step dt (neighbours
+  // and density, v*, then s, a_ii and p^(0)), without advancing time. IISPH only.
+  void prepare_pressure_system(double dt);
+  // Then Algorithm 2's solver loop with the simulation's settings; returns its iterations.
+  int iterate_pressure();
+  const std::vector<double>& source() const;    // s_i of the fluid particles (Eq. 19)
+  const std::vector<double>& diagonal() const;  // a_ii (Eq. 22/26 as derived in iisph.cpp)
+  // Pressure boundaries: each sample's source and diagonal (0: no row).
+  const std::vector<double>& sample_source() const;
+  const std::vector<double>& sample_diagonal() const;
+  // (Ap) for the fluid pressures p and, with pressure boundaries, the samples' pressures
+  // pb (ignored otherwise): Eq. 24 from these pressures (extrapolation, mirroring or zero
+  // derive p_b from p), then Eq. 20 for each fluid particle into ap and each sample into
+  // apb. Leaves the simulation's pressures at p and pb.
+  void apply(const std::vector<double>& p, const std::vector<double>& pb, std::vector<double>& ap,
+             std::vector<double>& apb);
+
+  // Off: the boundary velocity is left out of the IISPH source term (Eq. 16/19), as in
+  // the thesis' own code; only to show that the term matters.
+  void set_boundary_velocity_in_source(bool on) { sim_.boundary_velocity_in_source_ = on; }
+  // Particles per block of the fused Jacobi sweep (0: automatic, negative: two plain
+  // passes) and its number of ranges (0: one per thread). Only the speed depends on them.
+  void set_jacobi_sweep(Index block, Index ranges = 0) {
+    sim_.jacobi_block_ = block;
+    sim_.jacobi_ranges_ = ranges;
+  }
+  // Volumes of section 4.1 of every boundary particle from scratch at the current
+  // positions (the reference for the incremental update of moving boundaries).
+  std::vector<double> boundary_volumes_from_scratch() const { return sim_.boundary_volumes_from_scratch(); }
+
+ private:
+  Simulation& sim_;
+  double dt_ = 0;
+  Index active_samples_ = 0;
+};
+
+}  // namespace sluice
