@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/csv.h"
+#include "io/csv.h"
 #include "analysis/figures.h"
 #include "app/eta.h"
 #include "analysis/plot.h"

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "analysis/csv.h"
+#include "io/csv.h"
 #include "analysis/sweep.h"
 #include "test_util.h"
 

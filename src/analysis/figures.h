@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/csv.h"
+#include "io/csv.h"
 
 namespace sluice::analysis {
 

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "analysis/csv.h"
+#include "io/csv.h"
 #include "solver/simulation.h"
 
 namespace sluice::analysis {

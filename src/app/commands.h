@@ -1,5 +1,6 @@
 #pragma once
-// Subcommands of the `sluice` program; each is a thin layer over the library.
+// Subcommands of the `sluice` program; each is a thin layer over the library. Their flags
+// are set up in app/cmd_<name>.cpp (app/cli.h), their runs in app/<name>.cpp.
 #include <string>
 #include <vector>
 
@@ -180,7 +181,8 @@ int run_figures(const FiguresOptions& o);
 
 namespace sluice::app {
 
-// `sluice experiment NAME...`: the thesis' chapter-5 experiments (app/experiment.cpp).
+// `sluice experiment NAME...`: the thesis' chapter-5 experiments (app/experiment.cpp lists
+// them, app/experiments/ holds one file each).
 struct ExperimentOptions {
   std::vector<std::string> names;                   // experiment names, `all` or `list`
   std::string output_dir = "renders/experiments";  // each experiment writes DIR/<name>/

@@ -1,11 +1,11 @@
-#include "analysis/csv.h"
+#include "io/csv.h"
 
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 
-#include "scene/scene.h"
+#include "io/output.h"
 
 namespace sluice::analysis {
 
@@ -77,6 +77,8 @@ std::vector<double> CsvTable::numbers(const std::string& name) const {
   }
   return v;
 }
+
+void CsvWriter::write(const std::string& path) const { write_file_atomic(path, text_); }
 
 CsvTable read_csv_table(const std::string& path) {
   std::ifstream in(path);

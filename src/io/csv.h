@@ -1,8 +1,10 @@
 #pragma once
 // Comma-separated values as sluice writes and reads them: a header row, then one row per
-// record; fields holding commas, quotes or semicolons are quoted ("" for a quote).
+// record; fields holding commas, quotes or semicolons are quoted ("" for a quote). The
+// namespace stays sluice::analysis, where the figures and sweeps that read CSV grew it.
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sluice::analysis {
@@ -35,6 +37,21 @@ struct CsvTable {
   bool has_column(const std::string& name) const;
   // A column as numbers (NaN for an empty or non-numeric field).
   std::vector<double> numbers(const std::string& name) const;
+};
+
+// A CSV file built row by row in memory and written at once (write_file_atomic): the
+// header line, then each row's fields joined by commas as given (csv_quote them first
+// where they may hold a comma or a quote).
+class CsvWriter {
+ public:
+  explicit CsvWriter(std::string header) : text_(std::move(header) + "\n") {}
+  void row(const std::vector<std::string>& fields) { text_ += join(fields, ",") + "\n"; }
+  const std::string& text() const { return text_; }
+  // Throws OutputError.
+  void write(const std::string& path) const;
+
+ private:
+  std::string text_;
 };
 
 // Reads a CSV file; throws InputError naming the file and line (a missing file, no header,
