@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/check.h"
 #include "core/parallel.h"
 #include "solver/internal.h"
 
@@ -20,6 +21,8 @@ void Simulation::find_neighbors_phase() {
     find_neighbors(fluid_.x, fluid_grid_, kernel_, /*exclude_self=*/true, none, ff_);
     find_neighbors(fluid_.x, boundary_grid_, kernel_, /*exclude_self=*/false, none, fb_);
   }
+  SLUICE_ASSERT(ff_.offset.size() == static_cast<size_t>(fluid_.size()) + 1 && ff_.offset.size() == fb_.offset.size(),
+                "one neighbour list per fluid particle");
 }
 
 // One pass over all pairs: caches grad W (in single precision, see NeighborLists) for fluid and boundary pairs (and W for

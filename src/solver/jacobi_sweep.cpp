@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <omp.h>
 
+#include "core/check.h"
 #include "core/parallel.h"
 #include "solver/pressure_kernels.h"
 
@@ -48,6 +49,9 @@ Index Simulation::plan_jacobi_sweep() {
   if (block == 0) return 0;
   const Index n = fluid_.size();
   plan_jacobi_ranges();
+  SLUICE_ASSERT(scratch_.sweep_range.front() == 0 && scratch_.sweep_range.back() == n &&
+                    std::is_sorted(scratch_.sweep_range.begin(), scratch_.sweep_range.end()),
+                "the sweep's ranges cover the particles in order");
   scratch_.sweep_lag.resize(n);
   parallel_for(n, [&](Index i) {
     Index jmin = i, jmax = i;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/check.h"
 #include "core/parallel.h"
 #include "solver/internal.h"
 
@@ -51,6 +52,12 @@ Simulation::Simulation(const SimulationSetup& setup)
       settings_(setup.solver),
       kernel_(setup.spacing),
       mass_(setup.solver.rest_density / lattice_kernel_sum(kernel_)) {
+  SLUICE_ASSERT(setup.spacing > 0, "the setup's spacing is positive (the scene checks it)");
+  SLUICE_ASSERT(setup.boundary_object.empty() || setup.boundary_object.size() == setup.boundary_x.size(),
+                "one object index per boundary sample");
+  for (const BoundaryObject& obj : setup.objects)
+    SLUICE_ASSERT(obj.first >= 0 && obj.count >= 0 && obj.first + obj.count <= static_cast<Index>(setup.boundary_x.size()),
+                  "an object's samples lie within boundary_x");
   const Index n = static_cast<Index>(setup.fluid_x.size());
   fluid_.resize(n);
   for (Index i = 0; i < n; ++i) {
@@ -124,6 +131,7 @@ StepStats Simulation::step() {
   const double dt_nominal = choose_time_step();
   const double n_steps = std::max(1.0, std::ceil(remaining / dt_nominal - 1e-9));
   const double dt = remaining / n_steps;
+  SLUICE_ASSERT(dt > 0 && std::isfinite(dt), "a step moves time forward");
   st.dt = dt;
   advance(dt, st, /*settling=*/false);
 
@@ -235,6 +243,7 @@ double Simulation::choose_time_step() const {
 
 // Semi-implicit Euler (Algorithm 1/2): v(t+dt) = v* + dt a_p, x(t+dt) = x + dt v(t+dt).
 void Simulation::integrate(double dt) {
+  SLUICE_ASSERT(scratch_.a_p.size() == static_cast<size_t>(fluid_.size()), "the pressure solve left one a_p per particle");
   parallel_for(fluid_.size(), [&](Index i) {
     fluid_.v[i] += dt * scratch_.a_p[i];
     fluid_.x[i] += dt * fluid_.v[i];
