@@ -1,6 +1,6 @@
-// PNG encoding through stb_image_write with libdeflate as its zlib compressor:
-// stb's own deflate (level 5 at best) takes ~570 ms for a 1080p frame, libdeflate
-// level 1 with the "up" filter ~85 ms (measured, see shared NOTES).
+// PNG encoding through stb_image_write with libdeflate as its zlib compressor: stb's own
+// deflate is several times slower on a 1080p frame than libdeflate at level 1 with the
+// "up" filter (docs/performance.md, the frame-time table).
 #include "render/image.h"
 
 #include "io/atomic_file.h"

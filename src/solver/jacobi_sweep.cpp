@@ -26,12 +26,9 @@ constexpr double kFuseAboveBytes = 24.0 * 1024 * 1024;
 }  // namespace
 
 // The fused Jacobi sweep pays only when the solver's arrays crowd the last-level cache;
-// well inside it, the two plain passes are as fast or faster. Pressure phase of the
-// 0.5 m layer (`sluice bench` on the widened column, 20 steps), fused against plain,
-// median of the per-round ratios of 7 to 9 interleaved rounds, with the sweep in ranges:
-// 2 threads: 10k (about 3 MB) 1.07, 30k (9 MB) 0.97, 60k (19 MB) 0.98, 100k (31 MB) 0.89
-// and 0.85; 1 thread: 30k 1.05, 100k 0.80. (The 1M layer and the 130k dam break, 41 MB,
-// gain more: docs/performance.md.) Returns the block size, 0 for the two plain passes.
+// well inside it, the two plain passes are as fast or faster (docs/performance.md,
+// "Design decisions of the solve", has the measurements). Returns the block size, 0 for
+// the two plain passes.
 Index Simulation::jacobi_block_size() const {
   if (jacobi_block_ != 0) return std::max<Index>(jacobi_block_, 0);
   // Bytes the iteration streams: 12 per fluid pair (index and float gradient) and about
