@@ -186,12 +186,17 @@ TEST(MovingBoundaries, RotorStirsWithoutLeaks) {
   const BoundaryObject& rotor = scene.objects[1];
   std::vector<Vec2> rotor_poly;  // the polygon as given (pose at rest)
   for (const auto& p : scene.resolved["boundaries"][1]["points"]) rotor_poly.emplace_back(p[0].get<double>(), p[1].get<double>());
-  double sum_err = 0, deepest_in_rotor = 0, farthest_out = 0;
+  // The compression the positions reach (Eq. 15 at each step's start after the first),
+  // not the solver's prediction, which its exit condition bounds.
+  double sum_err = 0, max_err = 0, deepest_in_rotor = 0, farthest_out = 0;
   long steps = 0;
   while (!sim.finished()) {
     const StepStats st = sim.step();
-    sum_err += st.avg_error_percent;
-    ++steps;
+    if (st.step > 1) {
+      sum_err += st.density_error_percent;
+      max_err = std::max(max_err, st.density_error_percent);
+      ++steps;
+    }
     // The rotor's frame at the current time: undo its pose.
     const Pose pose = rotor.motion.at(sim.time());
     const double c = std::cos(-pose.angle), s = std::sin(-pose.angle);
@@ -212,9 +217,11 @@ TEST(MovingBoundaries, RotorStirsWithoutLeaks) {
     angular_momentum += sim.fluid_mass() * (x.x() * v.y() - x.y() * v.x());
   }
   EXPECT_LT(angular_momentum, 0.0) << "the rotor turns clockwise";
-  EXPECT_LE(sum_err / steps, 1.02 * scene.solver.tolerance_percent);
-  std::printf("rotor: %ld steps, average error %.4f %%, angular momentum %.3f kg m^2/s per m, deepest in rotor %.4f m, "
-              "farthest out %.4f m\n", steps, sum_err / steps, angular_momentum, deepest_in_rotor, farthest_out);
+  EXPECT_LE(sum_err / steps, scene.solver.tolerance_percent);
+  EXPECT_LE(max_err, 2 * scene.solver.tolerance_percent);
+  std::printf("[ measured ] rotor: %ld steps, realized compression average %.4f %%, largest %.4f %%, angular momentum "
+              "%.3f kg m^2/s per m, deepest in rotor %.4f m, farthest out %.4f m\n",
+              steps, sum_err / steps, max_err, angular_momentum, deepest_in_rotor, farthest_out);
 }
 
 // A plate moving at constant speed through a block of fluid at rest (no gravity, free

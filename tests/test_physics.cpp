@@ -220,13 +220,22 @@ TEST(Physics, DamBreakIisphMeetsTolerance) {
       continue;
     }
     worst = std::max(worst, st.avg_error_percent);
-    // The loop exits below max_iterations only once the average error is at most the
-    // tolerance (no slack: it is the loop's own exit condition).
-    EXPECT_LE(st.avg_error_percent, s.tolerance_percent) << "step " << st.step;
   }
-  std::printf("[ measured ] dam break: %zu steps, max iterations %d, steps at max_iterations %ld, worst avg error %.4f%%\n",
-              r.stats.size(), max_iter, capped, worst);
+  // The compression the positions really reach (Eq. 15 at the next step's start), not the
+  // solver's own prediction (Eq. 23, which the loop's exit condition bounds): it tests the
+  // source term and the operator, and what a user sees.
+  double realized = 0, realized_max = 0;
+  for (size_t k = 1; k < r.stats.size(); ++k) {
+    realized += r.stats[k].density_error_percent;
+    realized_max = std::max(realized_max, r.stats[k].density_error_percent);
+  }
+  realized /= static_cast<double>(r.stats.size() - 1);
+  std::printf("[ measured ] dam break: %zu steps, max iterations %d, steps at max_iterations %ld, worst predicted %.4f%%, "
+              "realized average %.4f%%, largest %.4f%%\n",
+              r.stats.size(), max_iter, capped, worst, realized, realized_max);
   EXPECT_EQ(capped, 0);
+  EXPECT_LE(realized, s.tolerance_percent);
+  EXPECT_LE(realized_max, 2 * s.tolerance_percent);
 }
 
 TEST(Physics, DamBreakStaysInTank) {
