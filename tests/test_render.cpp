@@ -7,7 +7,7 @@
 // at disc edges. On failure the actual image and a diff image are written next to the
 // test binary (render_failures/) and their paths printed.
 // Refresh the goldens (after an intended change of the picture):
-//   SLUICE_UPDATE_GOLDENS=1 build/sluice_tests --gtest_filter='RenderGolden.*'
+//   SLUICE_UPDATE_GOLDENS=1 build/sluice_render_tests --gtest_filter='RenderGolden.*'
 // Without an EGL display these tests fail with the EGL error; they never skip.
 #include <gtest/gtest.h>
 
