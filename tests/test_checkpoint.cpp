@@ -436,8 +436,8 @@ const char* kRenderScene = R"({
 // past frame 5 before it stopped), frame 5's PNG half written, frame 6 missing, stats.csv
 // rows past the checkpoint's step with a last one cut off, no summary.json, a temporary
 // checkpoint file. `sluice render --resume` must end with the uninterrupted run's files.
-// (Named Render* so that the sanitizer build of CI leaves it out, as the other renderer
-// tests: Mesa's llvmpipe is not ours to sanitize.)
+// (Named Render* so that it carries the CTest label render, which the sanitizer build of
+// CI leaves out, as the other renderer tests: Mesa's llvmpipe is not ours to sanitize.)
 TEST(RenderCheckpoint, ResumeGivesByteIdenticalFrames) {
   const TempDir dir;
   const fs::path scene = dir.path() / "scene.json", a = dir.path() / "a", b = dir.path() / "b";
