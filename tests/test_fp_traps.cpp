@@ -1,9 +1,10 @@
-// The floating-point traps of tests/fp_traps.cpp.
+// The floating-point traps of tests/fp_traps.cpp: on in a test, on every OpenMP thread,
+// and off in a suite that opts out.
 #include <fenv.h>
 #include <gtest/gtest.h>
 #include <omp.h>
 
-// The traps are on in a physics test, on every OpenMP thread, and off elsewhere.
+// The traps are on in a test, on every OpenMP thread, and off in a suite that opts out.
 TEST(PhysicsFloatingPointTraps, AreOnInEveryThread) {
   int missing = 0;
 #pragma omp parallel reduction(+ : missing)
