@@ -8,6 +8,7 @@
 
 #include "analysis/hard_cases.h"
 #include "scene/scene.h"
+#include "temp_dir.h"
 
 namespace sluice {
 namespace {
@@ -59,7 +60,8 @@ TEST(HardCases, SuiteLoads) {
 }
 
 TEST(HardCases, ExpectStopNeedsWhyAndARunSolver) {
-  const auto tmp = std::filesystem::temp_directory_path() / "sluice_suite_expect_stop.json";
+  const sluice::test::TempDir dir;
+  const auto tmp = dir.path() / "suite_expect_stop.json";
   const auto load = [&](const std::string& text) {
     std::FILE* f = std::fopen(tmp.string().c_str(), "w");
     ASSERT_NE(f, nullptr);

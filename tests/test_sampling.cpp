@@ -15,6 +15,7 @@
 #include "scene/scene.h"
 #include "core/shapes.h"
 #include "solver/simulation.h"
+#include "temp_dir.h"
 #include "test_util.h"
 
 namespace sluice {
@@ -45,35 +46,7 @@ std::vector<Vec2> samples_of(const Scene& s, Index object) {
   return {s.boundary_x.begin() + o.first, s.boundary_x.begin() + o.first + o.count};
 }
 
-// A fresh directory under the system's temporary directory, removed with its contents.
-class TempDir {
- public:
-  TempDir() {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("sluice_test_sampling_" + std::to_string(::getpid()) + "_" + test->test_suite_name() + "_" + test->name());
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  const fs::path& path() const { return path_; }
-  // Writes `text` to the relative path `name` (creating folders); returns the full path.
-  fs::path write(const std::string& name, const std::string& text) const {
-    const fs::path p = path_ / name;
-    fs::create_directories(p.parent_path());
-    std::ofstream(p, std::ios::binary) << text;
-    return p;
-  }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 // --- graded spacing along a segment ------------------------------------------------------------
 
