@@ -208,7 +208,7 @@ INSTANTIATE_TEST_SUITE_P(
                                  },
                                  2},
                       ResumeCase{"moving_paddle_adaptive", paddle, 3}),
-    [](const ::testing::TestParamInfo<ResumeCase>& info) { return info.param.name; });
+    [](const ::testing::TestParamInfo<ResumeCase>& param_info) { return param_info.param.name; });
 
 // --- refused checkpoints ----------------------------------------------------------------
 

@@ -123,8 +123,8 @@ TEST_P(HardCaseShort, MeetsItsCriteria) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Suite, HardCaseShort, ::testing::ValuesIn(runs()),
-                         [](const ::testing::TestParamInfo<Run>& info) {
-                           std::string n = info.param.name + "_" + solver_name(info.param.solver);
+                         [](const ::testing::TestParamInfo<Run>& param_info) {
+                           std::string n = param_info.param.name + "_" + solver_name(param_info.param.solver);
                            for (char& ch : n)
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            return n;

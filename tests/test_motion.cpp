@@ -211,9 +211,9 @@ TEST(MovingBoundaries, RotorStirsWithoutLeaks) {
     angular_momentum += sim.fluid_mass() * (x.x() * v.y() - x.y() * v.x());
   }
   EXPECT_LT(angular_momentum, 0.0) << "the rotor turns clockwise";
-  EXPECT_LE(sum_err / steps, 1.02 * scene.solver.tolerance_percent);
+  EXPECT_LE(sum_err / static_cast<double>(steps), 1.02 * scene.solver.tolerance_percent);
   std::printf("rotor: %ld steps, average error %.4f %%, angular momentum %.3f kg m^2/s per m, deepest in rotor %.4f m, "
-              "farthest out %.4f m\n", steps, sum_err / steps, angular_momentum, deepest_in_rotor, farthest_out);
+              "farthest out %.4f m\n", steps, sum_err / static_cast<double>(steps), angular_momentum, deepest_in_rotor, farthest_out);
 }
 
 // A plate moving at constant speed through a block of fluid at rest (no gravity, free
@@ -246,7 +246,7 @@ double density_error_ahead_of_plate(bool velocity_in_source) {
       }
     }
   }
-  return count ? sum / count : 0.0;
+  return count ? sum / static_cast<double>(count) : 0.0;
 }
 
 TEST(MovingBoundaries, BoundaryVelocityInSourceTermMatters) {
