@@ -1,5 +1,6 @@
 // `sluice bench --end-to-end`: a whole render timed and split, as a table and a CSV.
-// (Suite named Render*: the sanitizer run of .ci/run leaves out what runs the renderer.)
+// (Suite named Render*: it carries the CTest label render, which the sanitizer run of
+// .ci/run leaves out with what else runs the renderer.)
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>

@@ -6,8 +6,6 @@
 // over when the newest is corrupt; and through the program itself, rendered frames,
 // stats.csv, exports and summary totals after `--resume` equal an uninterrupted run's.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdint>
 #include <cstdlib>
@@ -23,6 +21,8 @@
 #include "io/checkpoint.h"
 #include "scene/scene.h"
 #include "solver/simulation.h"
+#include "temp_dir.h"
+#include "test_process.h"
 #include "test_util.h"
 
 namespace sluice {
@@ -31,29 +31,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::scene_from_json;
 
-// A fresh directory under the system's temporary directory, removed with its contents.
-class TempDir {
- public:
-  TempDir() {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = std::string(test->test_suite_name()) + "_" + test->name();
-    for (char& c : name)
-      if (c == '/') c = '_';
-    path_ = fs::temp_directory_path() / ("sluice_test_checkpoint_" + std::to_string(::getpid()) + "_" + name);
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 std::string read_bytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -230,7 +208,7 @@ INSTANTIATE_TEST_SUITE_P(
                                  },
                                  2},
                       ResumeCase{"moving_paddle_adaptive", paddle, 3}),
-    [](const ::testing::TestParamInfo<ResumeCase>& info) { return info.param.name; });
+    [](const ::testing::TestParamInfo<ResumeCase>& param_info) { return param_info.param.name; });
 
 // --- refused checkpoints ----------------------------------------------------------------
 
@@ -370,16 +348,12 @@ TEST(Checkpoint, StatsCsvCutBackToTheCheckpointsStep) {
 
 // --- through the program: render and simulate with --resume -------------------------------
 
-// The program's exit status, its stderr in `err`.
-int sluice(const std::string& args, std::string* err = nullptr, const fs::path& log = {}) {
-  const fs::path errfile = log.empty() ? fs::temp_directory_path() / ("sluice_test_checkpoint_" +
-                                                                       std::to_string(::getpid()) + ".err")
-                                       : log;
-  const std::string cmd = std::string(SLUICE_EXECUTABLE) + " " + args + " 2>" + errfile.string();
-  const int status = std::system(cmd.c_str());
-  if (err) *err = read_bytes(errfile);
-  fs::remove(errfile);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+// The program run in `dir`'s working folder (test::run_sluice): its exit status, its
+// stderr in `err`.
+int sluice(const test::CaseDir& dir, const std::vector<std::string>& args, std::string* err = nullptr) {
+  const test::Result r = test::run_sluice(dir, args);
+  if (err) *err = r.err;
+  return r.status;
 }
 
 // stats.csv without its wall-clock columns (ms_*), which differ between any two runs.
@@ -439,12 +413,13 @@ const char* kRenderScene = R"({
 // (Named Render* so that the sanitizer build of CI leaves it out, as the other renderer
 // tests: Mesa's llvmpipe is not ours to sanitize.)
 TEST(RenderCheckpoint, ResumeGivesByteIdenticalFrames) {
-  const TempDir dir;
-  const fs::path scene = dir.path() / "scene.json", a = dir.path() / "a", b = dir.path() / "b";
+  const test::CaseDir dir;
+  const fs::path scene = dir.work() / "scene.json", a = dir.work() / "a", b = dir.work() / "b";
   write_bytes(scene, kRenderScene);
   std::string err;
-  ASSERT_EQ(sluice("render " + scene.string() + " -o " + a.string() +
-                       " --resolution 160x96 --no-video --checkpoint-every 2 -q",
+  ASSERT_EQ(sluice(dir,
+                   {"render", scene.string(), "-o", a.string(), "--resolution", "160x96", "--no-video",
+                    "--checkpoint-every", "2", "-q"},
                    &err),
             0)
       << err;
@@ -462,7 +437,7 @@ TEST(RenderCheckpoint, ResumeGivesByteIdenticalFrames) {
   std::ofstream(b / "stats.csv", std::ios::app) << "999,0.5,0.00";
   write_bytes(b / "checkpoints" / "checkpoint_00006.bin.tmp", "SLUICECK");
 
-  ASSERT_EQ(sluice("render --resume " + b.string(), &err), 0) << err;
+  ASSERT_EQ(sluice(dir, {"render", "--resume", b.string()}, &err), 0) << err;
   EXPECT_NE(err.find("resuming"), std::string::npos) << err;
   expect_same_files(a, b, "frames");
   EXPECT_EQ(stats_without_timings(a / "stats.csv"), stats_without_timings(b / "stats.csv"));
@@ -472,7 +447,7 @@ TEST(RenderCheckpoint, ResumeGivesByteIdenticalFrames) {
   EXPECT_EQ(summary.at("frames_written"), 7);
 
   // The newest checkpoint corrupt: a warning, then the older one, the same frames.
-  const fs::path c = dir.path() / "c";
+  const fs::path c = dir.work() / "c";
   fs::copy(a, c, fs::copy_options::recursive);
   std::string bytes = read_bytes(c / "checkpoints" / "checkpoint_00004.bin");
   bytes[1000] ^= 0x20;
@@ -483,7 +458,7 @@ TEST(RenderCheckpoint, ResumeGivesByteIdenticalFrames) {
     const std::string name = "frame_0000" + std::to_string(f) + ".png";
     fs::copy_file(a / "frames" / name, c / "frames" / name);
   }
-  ASSERT_EQ(sluice("render --resume " + c.string() + " -q", &err), 0) << err;
+  ASSERT_EQ(sluice(dir, {"render", "--resume", c.string(), "-q"}, &err), 0) << err;
   EXPECT_NE(err.find("checkpoint_00004.bin is corrupt: checksum mismatch"), std::string::npos) << err;
   EXPECT_NE(err.find("falling back"), std::string::npos) << err;
   expect_same_files(a, c, "frames");
@@ -496,36 +471,39 @@ TEST(RenderCheckpoint, ResumeGivesByteIdenticalFrames) {
   expect_same_state(load_newest_checkpoint(a, hash).checkpoint.state, again.checkpoint.state);
 
   // Both corrupt: exit status 7, each file's problem named.
-  const fs::path d = dir.path() / "d";
+  const fs::path d = dir.work() / "d";
   fs::copy(a, d, fs::copy_options::recursive);
   for (const fs::path& f : list_checkpoints(d)) write_bytes(f, read_bytes(f).substr(0, 64));
-  EXPECT_EQ(sluice("render --resume " + d.string() + " -q", &err), 7);
+  EXPECT_EQ(sluice(dir, {"render", "--resume", d.string(), "-q"}, &err), 7);
   EXPECT_NE(err.find("sluice: checkpoint error: no usable checkpoint"), std::string::npos) << err;
   EXPECT_NE(err.find("checkpoint_00004.bin is truncated"), std::string::npos) << err;
   EXPECT_NE(err.find("checkpoint_00002.bin is truncated"), std::string::npos) << err;
 
   // Another scene file given with --resume: refused by its hash.
-  const fs::path other = dir.path() / "other.json";
+  const fs::path other = dir.work() / "other.json";
   std::string text = kRenderScene;
   text.replace(text.find("0.15, 0.2"), 9, "0.15, 0.1");
   write_bytes(other, text);
-  EXPECT_EQ(sluice("render " + other.string() + " --resume " + a.string() + " -q", &err), 7);
+  EXPECT_EQ(sluice(dir, {"render", other.string(), "--resume", a.string(), "-q"}, &err), 7);
   EXPECT_NE(err.find("was written for a different scene (hash "), std::string::npos) << err;
 
   // A run of `render` is not resumed by `simulate`; flags that shape the result are
   // taken from the run, not given again.
-  EXPECT_EQ(sluice("simulate --resume " + a.string() + " -q", &err), 7);
+  EXPECT_EQ(sluice(dir, {"simulate", "--resume", a.string(), "-q"}, &err), 7);
   EXPECT_NE(err.find("resume it with `sluice render --resume"), std::string::npos) << err;
-  EXPECT_NE(sluice("render --resume " + a.string() + " --fps 10 -q", &err), 0);
+  EXPECT_NE(sluice(dir, {"render", "--resume", a.string(), "--fps", "10", "-q"}, &err), 0);
   EXPECT_NE(err.find("excludes"), std::string::npos) << err;
 }
 
 TEST(CheckpointProgram, SimulateResumeGivesByteIdenticalExports) {
-  const TempDir dir;
-  const fs::path scene = dir.path() / "scene.json", a = dir.path() / "a", b = dir.path() / "b";
+  const test::CaseDir dir;
+  const fs::path scene = dir.work() / "scene.json", a = dir.work() / "a", b = dir.work() / "b";
   write_bytes(scene, kRenderScene);
   std::string err;
-  ASSERT_EQ(sluice("simulate " + scene.string() + " -o " + a.string() + " --export csv,vtk --checkpoint-every 3 -q", &err),
+  ASSERT_EQ(sluice(dir,
+                   {"simulate", scene.string(), "-o", a.string(), "--export", "csv,vtk", "--checkpoint-every", "3",
+                    "-q", "--threads", "2"},
+                   &err),
             0)
       << err;
   fs::copy(a, b, fs::copy_options::recursive);
@@ -537,7 +515,7 @@ TEST(CheckpointProgram, SimulateResumeGivesByteIdenticalExports) {
   const std::string pvd = read_bytes(a / "particles" / "particles.pvd");
   write_bytes(b / "particles" / "particles.pvd", pvd.substr(0, pvd.find("frame_00005")) + "\n");
   fs::remove(b / "summary.json");
-  ASSERT_EQ(sluice("simulate --resume " + b.string() + " -q --threads 1", &err), 0) << err;
+  ASSERT_EQ(sluice(dir, {"simulate", "--resume", b.string(), "-q", "--threads", "1"}, &err), 0) << err;
   expect_same_files(a, b, "particles");
   EXPECT_EQ(stats_without_timings(a / "stats.csv"), stats_without_timings(b / "stats.csv"));
   EXPECT_EQ(deterministic_totals(a / "summary.json"), deterministic_totals(b / "summary.json"));

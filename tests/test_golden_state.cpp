@@ -4,7 +4,7 @@
 // run-against-run comparison cannot (Box2D's determinism test works the same way).
 //
 // A change that is meant to change the numbers refreshes the table deliberately:
-//   SLUICE_UPDATE_GOLDENS=1 build/sluice_tests --gtest_filter='GoldenState.*'
+//   SLUICE_UPDATE_GOLDENS=1 build/sluice_unit_tests --gtest_filter='GoldenState.*'
 // rewrites tests/golden/state_hashes.txt; the commit says why the bits moved.
 #include <gtest/gtest.h>
 
@@ -105,7 +105,7 @@ TEST(GoldenState, FinalStateMatchesTheStoredHashAtOneTwoAndThreeThreads) {
   const std::map<std::string, std::string> table = read_table();
   std::ostringstream fresh;
   fresh << "# Final-state hashes of tests/test_golden_state.cpp (FNV-1a of x, v, p in id order).\n"
-           "# Refresh: SLUICE_UPDATE_GOLDENS=1 build/sluice_tests --gtest_filter='GoldenState.*'\n";
+           "# Refresh: SLUICE_UPDATE_GOLDENS=1 build/sluice_unit_tests --gtest_filter='GoldenState.*'\n";
   for (const Config& c : configs()) {
     const std::string one = run_hash(c, 1);
     for (int threads : {2, 3}) EXPECT_EQ(run_hash(c, threads), one) << c.name << " at " << threads << " threads";

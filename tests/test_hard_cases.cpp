@@ -8,6 +8,7 @@
 
 #include "analysis/hard_cases.h"
 #include "scene/scene.h"
+#include "temp_dir.h"
 
 namespace sluice {
 namespace {
@@ -59,7 +60,8 @@ TEST(HardCases, SuiteLoads) {
 }
 
 TEST(HardCases, ExpectStopNeedsWhyAndARunSolver) {
-  const auto tmp = std::filesystem::temp_directory_path() / "sluice_suite_expect_stop.json";
+  const sluice::test::TempDir dir;
+  const auto tmp = dir.path() / "suite_expect_stop.json";
   const auto load = [&](const std::string& text) {
     std::FILE* f = std::fopen(tmp.string().c_str(), "w");
     ASSERT_NE(f, nullptr);
@@ -121,8 +123,8 @@ TEST_P(HardCaseShort, MeetsItsCriteria) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Suite, HardCaseShort, ::testing::ValuesIn(runs()),
-                         [](const ::testing::TestParamInfo<Run>& info) {
-                           std::string n = info.param.name + "_" + solver_name(info.param.solver);
+                         [](const ::testing::TestParamInfo<Run>& param_info) {
+                           std::string n = param_info.param.name + "_" + solver_name(param_info.param.solver);
                            for (char& ch : n)
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            return n;

@@ -1,7 +1,8 @@
 // `sluice montage` and compose_montage(): the grid of synthetic solid-colour cells pixel
 // by pixel (positions, label bands, the shared colorbar, the errors), then the program
-// itself on a tiny scene. Only RenderMontage.* needs EGL (CI's sanitizer pass leaves
-// Render* out); the bad-input cases fail before any rendering.
+// itself on a tiny scene. Only RenderMontage.* needs EGL (the sanitizer pass of CI
+// runs no test labelled render, and this whole binary is); the bad-input cases fail
+// before any rendering.
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -217,11 +217,11 @@ TEST(MovingBoundaries, RotorStirsWithoutLeaks) {
     angular_momentum += sim.fluid_mass() * (x.x() * v.y() - x.y() * v.x());
   }
   EXPECT_LT(angular_momentum, 0.0) << "the rotor turns clockwise";
-  EXPECT_LE(sum_err / steps, scene.solver.tolerance_percent);
+  EXPECT_LE(sum_err / static_cast<double>(steps), scene.solver.tolerance_percent);
   EXPECT_LE(max_err, 2 * scene.solver.tolerance_percent);
   std::printf("[ measured ] rotor: %ld steps, realized compression average %.4f %%, largest %.4f %%, angular momentum "
               "%.3f kg m^2/s per m, deepest in rotor %.4f m, farthest out %.4f m\n",
-              steps, sum_err / steps, max_err, angular_momentum, deepest_in_rotor, farthest_out);
+              steps, sum_err / static_cast<double>(steps), max_err, angular_momentum, deepest_in_rotor, farthest_out);
 }
 
 // A plate moving at constant speed through a block of fluid at rest (no gravity, free
@@ -254,7 +254,7 @@ double density_error_ahead_of_plate(bool velocity_in_source) {
       }
     }
   }
-  return count ? sum / count : 0.0;
+  return count ? sum / static_cast<double>(count) : 0.0;
 }
 
 TEST(MovingBoundaries, BoundaryVelocityInSourceTermMatters) {

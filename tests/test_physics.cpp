@@ -163,7 +163,7 @@ std::vector<analysis::HydrostaticCase> holding_hydrostatic_cases() {
 }
 
 INSTANTIATE_TEST_SUITE_P(Physics, Hydrostatic, ::testing::ValuesIn(holding_hydrostatic_cases()),
-                         [](const ::testing::TestParamInfo<analysis::HydrostaticCase>& info) { return info.param.name; });
+                         [](const ::testing::TestParamInfo<analysis::HydrostaticCase>& param_info) { return param_info.param.name; });
 
 // --- dam break: IISPH convergence and containment --------------------------------------------
 
@@ -293,7 +293,7 @@ INSTANTIATE_TEST_SUITE_P(
                       DeterminismCase{"wcsph", R"("type": "wcsph", "stiffness": 5e5)", 1.5e-4, 60},
                       DeterminismCase{"wcsph_viscosity", R"("type": "wcsph", "stiffness": 5e5, "viscosity": 0.01)", 1.5e-4,
                                       60}),
-    [](const ::testing::TestParamInfo<DeterminismCase>& info) { return info.param.name; });
+    [](const ::testing::TestParamInfo<DeterminismCase>& param_info) { return param_info.param.name; });
 
 // The fused Jacobi sweep (Simulation::jacobi_sweep) gives the bits of the two plain
 // passes (block size -1) for any blocks and ranges: one block holding every particle,

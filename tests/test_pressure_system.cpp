@@ -180,8 +180,10 @@ TEST(PressureSystemJacobi, FixedPointMatchesSparseLUOnTheActiveSet) {
   // The clamped rows: Eq. 21 keeps p_i = 0 only where the predicted density is not above
   // rest, (Ap)_i <= s_i (a_ii < 0).
   probe.apply(p_jacobi, none, ap, apb);
-  for (Index i = 0; i < n; ++i)
-    if (p_jacobi[i] == 0) EXPECT_LE(ap[i] - s[i], 1e-6 * std::abs(s[i]) + 1e-9) << "particle " << i;
+  for (Index i = 0; i < n; ++i) {
+    if (p_jacobi[i] != 0) continue;
+    EXPECT_LE(ap[i] - s[i], 1e-6 * std::abs(s[i]) + 1e-9) << "particle " << i;
+  }
 }
 
 }  // namespace

@@ -18,33 +18,25 @@
 #include <string>
 #include <vector>
 
+#include "temp_dir.h"
+
 extern char** environ;
 
 namespace sluice::test {
 
 namespace fs = std::filesystem;
 
-// A folder of its own for one case: `work` is the program's working directory, the
-// captured output lies beside it so that it is not part of what the program left.
+// A folder of its own for one case (a TempDir): `work` is the program's working
+// directory, the captured output lies beside it so that it is not part of what the
+// program left.
 class CaseDir {
  public:
-  CaseDir() {
-    std::string tmpl = (fs::temp_directory_path() / "sluice_cli_XXXXXX").string();
-    if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-    base_ = tmpl;
-    fs::create_directory(work());
-  }
-  ~CaseDir() {
-    std::error_code ec;
-    fs::remove_all(base_, ec);
-  }
-  CaseDir(const CaseDir&) = delete;
-  CaseDir& operator=(const CaseDir&) = delete;
-  fs::path work() const { return base_ / "work"; }
-  fs::path base() const { return base_; }
+  CaseDir() { fs::create_directory(work()); }
+  fs::path work() const { return dir_.path() / "work"; }
+  fs::path base() const { return dir_.path(); }
 
  private:
-  fs::path base_;
+  TempDir dir_;
 };
 
 inline std::string read_text(const fs::path& p) {

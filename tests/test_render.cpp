@@ -7,7 +7,7 @@
 // at disc edges. On failure the actual image and a diff image are written next to the
 // test binary (render_failures/) and their paths printed.
 // Refresh the goldens (after an intended change of the picture):
-//   SLUICE_UPDATE_GOLDENS=1 build/sluice_tests --gtest_filter='RenderGolden.*'
+//   SLUICE_UPDATE_GOLDENS=1 build/sluice_render_tests --gtest_filter='RenderGolden.*'
 // Without an EGL display these tests fail with the EGL error; they never skip.
 #include <gtest/gtest.h>
 
@@ -26,6 +26,7 @@
 #include "render/video.h"
 #include "scene/scene.h"
 #include "solver/simulation.h"
+#include "temp_dir.h"
 #include "test_process.h"
 #include "view/scene_view.h"
 
@@ -485,7 +486,8 @@ TEST(RenderColormap, EndpointsAndPngRoundTrip) {
   EXPECT_GT(viridis.at(1).r, 230);
   Image img(7, 3);
   for (size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = static_cast<std::uint8_t>(i * 13);
-  const fs::path p = fs::temp_directory_path() / "sluice_roundtrip.png";
+  const sluice::test::TempDir dir;
+  const fs::path p = dir.path() / "roundtrip.png";
   write_png(p.string(), img);
   const Image back = read_png(p.string());
   EXPECT_EQ(back.rgb, img.rgb);

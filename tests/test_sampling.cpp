@@ -15,6 +15,7 @@
 #include "scene/scene.h"
 #include "core/shapes.h"
 #include "solver/simulation.h"
+#include "temp_dir.h"
 #include "test_util.h"
 
 namespace sluice {
@@ -45,35 +46,7 @@ std::vector<Vec2> samples_of(const Scene& s, Index object) {
   return {s.boundary_x.begin() + o.first, s.boundary_x.begin() + o.first + o.count};
 }
 
-// A fresh directory under the system's temporary directory, removed with its contents.
-class TempDir {
- public:
-  TempDir() {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("sluice_test_sampling_" + std::to_string(::getpid()) + "_" + test->test_suite_name() + "_" + test->name());
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  const fs::path& path() const { return path_; }
-  // Writes `text` to the relative path `name` (creating folders); returns the full path.
-  fs::path write(const std::string& name, const std::string& text) const {
-    const fs::path p = path_ / name;
-    fs::create_directories(p.parent_path());
-    std::ofstream(p, std::ios::binary) << text;
-    return p;
-  }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 // --- graded spacing along a segment ------------------------------------------------------------
 
@@ -398,19 +371,19 @@ TEST_P(TankAtRest, WallsHoldTheFluidAtRestDensity) {
     row_sum += step_sum;
     row_samples += step_count;
     if (st.time > 0.05 && step_count > 0) {  // past the first pressure build-up
-      row_lo = std::min(row_lo, step_sum / step_count);
-      row_hi = std::max(row_hi, step_sum / step_count);
+      row_lo = std::min(row_lo, step_sum / static_cast<double>(step_count));
+      row_hi = std::max(row_hi, step_sum / static_cast<double>(step_count));
     }
   }
-  const double row_mean = row_sum / row_samples;
+  const double row_mean = row_sum / static_cast<double>(row_samples);
   double rms = 0;
   for (const Vec2& v : sim.fluid().v) rms += v.squaredNorm();
   rms = std::sqrt(rms / sim.fluid().size());
   std::printf("[ measured ] tank at rest, %s (%zu wall samples): %ld steps, %.2f iterations on average (%ld at "
               "max_iterations), average error predicted %.4f%% actual %.4f%%, first row rho %.3f (per step after "
               "0.05 s in [%.3f, %.3f]), least wall clearance %.4f h, end rms speed %.3f m/s\n",
-              c.name.c_str(), scene.boundary_x.size(), steps, static_cast<double>(iterations) / steps, capped,
-              predicted / steps, actual / steps, row_mean, row_lo, row_hi, clearance / h, rms);
+              c.name.c_str(), scene.boundary_x.size(), steps, static_cast<double>(iterations) / static_cast<double>(steps), capped,
+              predicted / static_cast<double>(steps), actual / static_cast<double>(steps), row_mean, row_lo, row_hi, clearance / h, rms);
 
   // No particle crosses a wall by more than h/2 (where the first sample layer sits).
   EXPECT_EQ(escapes, 0) << "first: " << first_escape;
@@ -418,8 +391,8 @@ TEST_P(TankAtRest, WallsHoldTheFluidAtRestDensity) {
   // The solver meets its tolerance (0.1 %) every step, and the density it starts from is as
   // good on average: measured 0.024 % predicted and 0.024-0.025 % actual for both walls.
   EXPECT_EQ(capped, 0);
-  EXPECT_LE(predicted / steps, 0.15);
-  EXPECT_LE(actual / steps, 0.15);
+  EXPECT_LE(predicted / static_cast<double>(steps), 0.15);
+  EXPECT_LE(actual / static_cast<double>(steps), 0.15);
   // The first row above the floor: measured run means 1000.11 (1.5 h) and 1000.32 (0.5 h);
   // per-step means after 0.05 s within [997.9, 1001.0] and [1000.0, 1000.8]. The bands,
   // +-0.2 % (twice the solver tolerance) for the run and +-0.5 % per step, leave 2-10x.
@@ -436,7 +409,7 @@ TEST_P(TankAtRest, WallsHoldTheFluidAtRestDensity) {
 // viscosity 0.01: 0.18 h). Their bounds: 0.1 h, and -0.25 h (half way to the first layer).
 INSTANTIATE_TEST_SUITE_P(Sampling, TankAtRest,
                          ::testing::Values(TankCase{"sparse_wall_1_5h", 0.03, -0.25}, TankCase{"dense_wall_0_5h", 0.01, 0.1}),
-                         [](const ::testing::TestParamInfo<TankCase>& info) { return info.param.name; });
+                         [](const ::testing::TestParamInfo<TankCase>& param_info) { return param_info.param.name; });
 
 }  // namespace
 }  // namespace sluice

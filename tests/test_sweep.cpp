@@ -7,6 +7,7 @@
 
 #include "io/csv.h"
 #include "analysis/sweep.h"
+#include "temp_dir.h"
 #include "test_util.h"
 
 namespace sluice {
@@ -59,7 +60,8 @@ TEST(Sweep, CsvRoundTrip) {
   r.stable = false;
   r.message = "unstable at step 3, t = 0.1 s: x, y";
   r.ms_phase[2] = 0.125;
-  const auto path = std::filesystem::temp_directory_path() / "sluice_sweep_roundtrip.csv";
+  const sluice::test::TempDir dir;
+  const auto path = dir.path() / "sweep_roundtrip.csv";
   std::ofstream(path) << analysis::sweep_csv({r, point(2, 0.1)});
   const auto back = analysis::read_sweep_csv(path.string());
   ASSERT_EQ(back.size(), 2u);
@@ -80,7 +82,8 @@ TEST(Sweep, CsvHasStepSizesAndLabelsAndReadsOldFiles) {
   r.avg_dt = 0.00196;
   r.min_dt = 0.0015;
   r.dt_of_max_percent = 98;
-  const auto path = std::filesystem::temp_directory_path() / "sluice_sweep_dt.csv";
+  const sluice::test::TempDir dir;
+  const auto path = dir.path() / "sweep_dt.csv";
   std::ofstream(path) << analysis::sweep_csv({r});
   const auto back = analysis::read_sweep_csv(path.string());
   ASSERT_EQ(back.size(), 1u);

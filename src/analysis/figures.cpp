@@ -156,7 +156,7 @@ std::string box_plot(const std::vector<FigureSeries>& series) {
   // A label slanted by 30 degrees needs about a quarter of its length in character heights below the axis.
   s += "set xtics (" + tics + ") noenhanced" + (slanted ? " rotate by 30 right" : "") + "\nset xrange [0.4:" +
        num(static_cast<double>(series.size()) + 0.6) + "]\n" +
-       "set bmargin " + std::to_string(slanted ? 3 + static_cast<int>(longest * 0.25) : 5) + "\n" +
+       "set bmargin " + std::to_string(slanted ? 3 + static_cast<int>(static_cast<double>(longest) * 0.25) : 5) + "\n" +
        "set boxwidth 0.5\nset style fill solid 0.35 border -1\n"
        "plot $box using 1:2:3:4:5 with candlesticks whiskerbars 0.5 lc rgb \"#1f77b4\" title \"quartiles, 1.5 IQR whiskers\", \\\n"
        "     $box using 1:6:6:6:6 with candlesticks lc rgb \"black\" lw 2 notitle, \\\n"

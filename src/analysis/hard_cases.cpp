@@ -180,7 +180,7 @@ CaseResult run_case(const HardCase& c, const std::string& suite_dir, SolverType 
   }
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.simulated = sim.time();
-  const double ns = std::max<long>(1, r.steps);
+  const double ns = static_cast<double>(std::max<long>(1, r.steps));
   r.avg_error = sum_err / ns;
   r.avg_iterations = sum_iter / ns;
   if (c.resting) r.drift = (centre_of_mass(sim) - com0).norm();

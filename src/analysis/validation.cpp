@@ -81,8 +81,8 @@ HydrostaticResult run_hydrostatic(const Scene& scene, double width, double avera
     if (count[b] == 0) continue;
     DepthBin db;
     db.samples = count[b];
-    db.depth = sum_d[b] / count[b];
-    db.pressure = sum_p[b] / count[b];
+    db.depth = sum_d[b] / static_cast<double>(count[b]);
+    db.pressure = sum_p[b] / static_cast<double>(count[b]);
     db.ratio = db.pressure / (rho0 * g * db.depth);
     r.bins.push_back(db);
     if (db.depth > floor_depth - 2 * h) r.floor_ratio = std::max(r.floor_ratio, db.ratio);
@@ -91,8 +91,8 @@ HydrostaticResult run_hydrostatic(const Scene& scene, double width, double avera
       half_d += sum_d[b];
     }
     if (db.depth <= 3 * h || db.depth >= d_max) continue;  // surface rows: p is clamped at 0 there
-    sxx += count[b] * db.depth * db.depth;
-    sxy += count[b] * db.depth * db.pressure;
+    sxx += static_cast<double>(count[b]) * db.depth * db.depth;
+    sxy += static_cast<double>(count[b]) * db.depth * db.pressure;
     if (std::abs(db.ratio - 1.0) > r.worst_bin_error) {
       r.worst_bin_error = std::abs(db.ratio - 1.0);
       r.worst_depth = db.depth;
@@ -142,7 +142,7 @@ AtRestResult run_at_rest(const Scene& scene) {
     iterations += sim.step().iterations;
     ++r.steps;
   }
-  r.avg_iterations = r.steps ? iterations / r.steps : 0;
+  r.avg_iterations = r.steps ? iterations / static_cast<double>(r.steps) : 0;
   r.median_speed_end = median_speed(sim);
   r.max_speed_end = max_speed(sim);
   r.energy_drift = sim.mechanical_energy() - e0;
@@ -217,7 +217,7 @@ DamBreakResult run_dam_break_front(const Scene& scene) {
     if (st.frame >= 0 && !record()) break;  // at the wall: nothing more to compare
   }
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.avg_iterations = r.steps ? iterations / r.steps : 0;
+  r.avg_iterations = r.steps ? iterations / static_cast<double>(r.steps) : 0;
 
   // Linear interpolation of the simulated Z(T) at each measured T within range.
   double sum = 0;

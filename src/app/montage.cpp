@@ -193,7 +193,7 @@ int run_montage(const MontageOptions& o) {
 
   // Every variant's scene before any run: a bad value of the last one shows at once.
   const size_t count = vary.key.empty() ? 1 : vary.values.size();
-  const int columns = o.cols > 0 ? o.cols : vary.key.empty() ? std::min<int>(4, times.size()) : times.size();
+  const int columns = o.cols > 0 ? o.cols : vary.key.empty() ? std::min<int>(4, static_cast<int>(times.size())) : static_cast<int>(times.size());
   // The montage's size before any run: a grid too large to write fails only at the end.
   const MontageLayout layout = montage_layout(cell_w, cell_h, static_cast<int>(times.size() * count), columns,
                                               vary.key.empty() ? 1 : 2, !o.title.empty(), MontageColorbar{});

@@ -331,14 +331,14 @@ int run_bench_render(const BenchRenderOptions& o) {
     for (long n : o.particles) {
       // A square block of touching discs in row order, speeds varying across it.
       const long side = std::max(1L, static_cast<long>(std::ceil(std::sqrt(static_cast<double>(n)))));
-      const double h = 1.0 / side;
+      const double h = 1.0 / static_cast<double>(side);
       std::vector<double> xy;
       std::vector<float> val;
       xy.reserve(2 * n);
       for (long k = 0; k < n; ++k) {
-        xy.push_back((k % side + 0.5) * h);
-        xy.push_back((k / side + 0.5) * h);
-        val.push_back(static_cast<float>((k % side) / double(side)));
+        xy.push_back((static_cast<double>(k % side) + 0.5) * h);
+        xy.push_back((static_cast<double>(k / side) + 0.5) * h);
+        val.push_back(static_cast<float>(static_cast<double>(k % side) / double(side)));
       }
       fs_.bounds_min[0] = fs_.bounds_min[1] = 0;
       fs_.bounds_max[0] = fs_.bounds_max[1] = 1;
@@ -378,7 +378,7 @@ int run_bench_render(const BenchRenderOptions& o) {
               "png_ms", "total_ms", "png_kB");
   for (const Row& r : rows)
     std::printf("%-10s %10ld %9.1f %9.1f %9.1f %9.1f %9.1f %9.0f\n", r.resolution.c_str(), r.particles, r.draw, r.read,
-                r.annotate, r.png, r.total, r.png_bytes / 1024.0);
+                r.annotate, r.png, r.total, static_cast<double>(r.png_bytes) / 1024.0);
   if (!o.csv.empty()) {
     const fs::path p(o.csv);
     if (p.has_parent_path()) make_directory(p.parent_path());

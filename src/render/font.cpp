@@ -78,7 +78,7 @@ std::uint8_t blend(std::uint8_t under, std::uint8_t ink, int alpha) {
 
 }  // namespace
 
-int text_ascent(int px) { return static_cast<int>(std::ceil(font().scale(px) * font().ascent)); }
+int text_ascent(int px) { return static_cast<int>(std::ceil(font().scale(px) * static_cast<float>(font().ascent))); }
 
 int line_height(int px) {
   return static_cast<int>(std::ceil(font().scale(px) * static_cast<float>(font().ascent - font().descent)));

@@ -47,8 +47,8 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
   const double step = nice_step(lo, hi, target);
   // Integer multiples of the step (k * step, never accumulated sums: 0.1 + 0.2 != 0.3).
   const double eps = 1e-9 * step;
-  for (long k = static_cast<long>(std::ceil((lo - eps) / step)); k * step <= hi + eps; ++k)
-    ticks.push_back(k == 0 ? 0.0 : k * step);
+  for (long k = static_cast<long>(std::ceil((lo - eps) / step)); static_cast<double>(k) * step <= hi + eps; ++k)
+    ticks.push_back(k == 0 ? 0.0 : static_cast<double>(k) * step);
   return ticks;
 }
 

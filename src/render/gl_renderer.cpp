@@ -161,7 +161,7 @@ void GlRenderer::draw_discs(const ViewWindow& view, double diameter, std::span<c
   glUseProgram(g.program);
   glUniform2f(g.u_world_to_ndc, static_cast<float>(sx), static_cast<float>(-sy));
   glUniform2f(g.u_ndc_offset, -1.0f, 1.0f);
-  glUniform2f(g.u_pixel_to_ndc, 2.0f / width_, 2.0f / height_);
+  glUniform2f(g.u_pixel_to_ndc, 2.0f / static_cast<float>(width_), 2.0f / static_cast<float>(height_));
   glUniform1f(g.u_radius_px, static_cast<float>(0.5 * diameter * width_ / (view.x1 - view.x0)));
   glBindVertexArray(g.vao);
   glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(n));

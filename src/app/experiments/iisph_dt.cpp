@@ -22,7 +22,8 @@ void iisph_dt(Context& c) {
   }
   std::size_t best = runs.size();
   for (std::size_t i = 0; i < runs.size(); ++i)
-    if (runs[i].stable && (best == runs.size() || runs[i].ms_phase[4] * runs[i].steps < runs[best].ms_phase[4] * runs[best].steps))
+    if (runs[i].stable && (best == runs.size() || runs[i].ms_phase[4] * static_cast<double>(runs[i].steps) <
+                                                       runs[best].ms_phase[4] * static_cast<double>(runs[best].steps)))
       best = i;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const SweepRun& r = runs[i];
