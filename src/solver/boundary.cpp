@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/parallel.h"
+#include "solver/internal.h"
 
 namespace sluice {
 
@@ -137,16 +138,16 @@ double Simulation::max_boundary_speed() const {
 void Simulation::prepare_boundary_terms() {
   const Index n = fluid_.size(), nb = boundary_.size();
   const double rho0 = settings_.rest_density;
-  scratch_.grad_b.resize(n);
+  scratch_->grad_b.resize(n);
   parallel_for(n, [&](Index i) {
     Vec2 g = Vec2::Zero();
     for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) g += (rho0 * boundary_.volume[fb_.j[k]]) * fb_.grad[k].cast<double>();
-    scratch_.grad_b[i] = g;
+    scratch_->grad_b[i] = g;
   });
-  scratch_.pb_over_rho2.assign(nb, 0.0);
+  scratch_->pb_over_rho2.assign(nb, 0.0);
   if (settings_.boundary_pressure != BoundaryPressure::Extrapolation) return;
-  scratch_.ext_wsum.resize(nb);
-  scratch_.ext_gravity.resize(nb);
+  scratch_->ext_wsum.resize(nb);
+  scratch_->ext_gravity.resize(nb);
   const Vec2 gravity = settings_.gravity;
   parallel_for(nb, [&](Index b) {
     double ws = 0.0;
@@ -156,8 +157,8 @@ void Simulation::prepare_boundary_terms() {
       ws += bf_.w[k];
       xr += (fluid_.rho[f] * bf_.w[k]) * (boundary_.x[b] - fluid_.x[f]);
     }
-    scratch_.ext_wsum[b] = ws;
-    scratch_.ext_gravity[b] = (gravity - boundary_.a[b]).dot(xr);  // an accelerating wall: g - a_b
+    scratch_->ext_wsum[b] = ws;
+    scratch_->ext_gravity[b] = (gravity - boundary_.a[b]).dot(xr);  // an accelerating wall: g - a_b
   });
 }
 
@@ -174,21 +175,21 @@ void Simulation::update_boundary_pressure() {
       const double p = bf_.offset[b] == bf_.offset[b + 1] ? 0.0
                                                          : std::max(k * (boundary_density(bf_, b, mass_, g1r) / rho0 - 1.0), 0.0);
       boundary_.p[b] = p;
-      scratch_.pb_over_rho2[b] = p * inv_rho0_2;
+      scratch_->pb_over_rho2[b] = p * inv_rho0_2;
     });
     return;
   }
   if (settings_.boundary_pressure != BoundaryPressure::Extrapolation) return;
   parallel_for(boundary_.size(), [&](Index b) {
-    const double ws = scratch_.ext_wsum[b];
+    const double ws = scratch_->ext_wsum[b];
     double p = 0.0;
     if (ws > 0.0) {
       double sp = 0.0;
       for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) sp += fluid_.p[bf_.j[k]] * bf_.w[k];
-      p = std::max((sp + scratch_.ext_gravity[b]) / ws, 0.0);
+      p = std::max((sp + scratch_->ext_gravity[b]) / ws, 0.0);
     }
     boundary_.p[b] = p;
-    scratch_.pb_over_rho2[b] = p * inv_rho0_2;
+    scratch_->pb_over_rho2[b] = p * inv_rho0_2;
   });
 }
 
@@ -196,18 +197,18 @@ void Simulation::update_boundary_pressure() {
 // term of Eq. 24 (with the pressures the step integrates) times the boundary velocity.
 void Simulation::add_boundary_pressure_work(double dt) {
   const PressureTerms t = pressure_terms(dt);
-  const std::vector<double>& pr = scratch_.p_over_rho2;
+  const std::vector<double>& pr = scratch_->p_over_rho2;
   parallel_for(fluid_.size(), [&](Index i) {
     double w = 0.0;
     for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
       const Index b = fb_.j[k];
       if (!boundary_.moving[b]) continue;
-      const double pb = t.boundary_field ? scratch_.pb_over_rho2[b] : 0.0;
+      const double pb = t.boundary_field ? scratch_->pb_over_rho2[b] : 0.0;
       const double c = t.c_gamma3 / settings_.gamma3;  // 2 for mirroring: p_b / rho_b^2 = p_i / rho_i^2
       const Vec2 a = -(t.gamma3_rho0 * boundary_.volume[b] * (c * pr[i] + pb)) * fb_.grad[k].cast<double>();
       w += a.dot(boundary_.v[b]);
     }
-    scratch_.work[i] += dt * mass_ * w;
+    scratch_->work[i] += dt * mass_ * w;
   });
 }
 

@@ -36,7 +36,7 @@ void Simulation::compute_density() {
   fb_.grad.resize(static_cast<size_t>(fb_.pairs()));
   fb_.w.resize(static_cast<size_t>(fb_.pairs()));
   const bool correct = settings_.gradient_correction;
-  if (correct) scratch_.grad_scale.resize(fluid_.size());
+  if (correct) scratch_->grad_scale.resize(fluid_.size());
   parallel_for(fluid_.size(), [&](Index i) {
     const Vec2 xi = fluid_.x[i];
     double w, dw;
@@ -64,7 +64,7 @@ void Simulation::compute_density() {
     if (correct) {
       // tr(sum_j V_j x_ji (x) grad W_ij) = -sum_j V_j r_ij^2 (dW/dr)/r: 2 for an exact gradient.
       const double trace = -(mass_ / rho0 * mf + mb);
-      scratch_.grad_scale[i] = trace > kMinGradientTrace ? 2.0 / trace : 1.0;
+      scratch_->grad_scale[i] = trace > kMinGradientTrace ? 2.0 / trace : 1.0;
     }
   });
   if (correct) correct_gradients();
@@ -80,7 +80,7 @@ void Simulation::compute_density() {
 // (c_i + c_j) / 2, which keeps them antisymmetric (momentum is conserved), boundary pairs
 // by c_i. A free-surface particle (trace below kMinGradientTrace) is left as it is.
 void Simulation::correct_gradients() {
-  const std::vector<double>& c = scratch_.grad_scale;
+  const std::vector<double>& c = scratch_->grad_scale;
   parallel_for(fluid_.size(), [&](Index i) {
     const double ci = c[i];
     for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k)

@@ -52,8 +52,8 @@ double Simulation::extrapolation_coupling(Index i) const {
   double sum = 0.0;
   for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
     const Index b = fb_.j[k];
-    if (scratch_.ext_wsum[b] <= 0.0) continue;
-    const double weight = rho0 * boundary_.volume[b] * fb_.w[k] / scratch_.ext_wsum[b];
+    if (scratch_->ext_wsum[b] <= 0.0) continue;
+    const double weight = rho0 * boundary_.volume[b] * fb_.w[k] / scratch_->ext_wsum[b];
     double dots = 0.0;
     for (Index kf = ff_.offset[i]; kf < ff_.offset[i + 1]; ++kf) {
       const Index f = ff_.j[kf];
@@ -75,9 +75,9 @@ Index Simulation::prepare_pressure_system(double dt) {
   const SolverSettings& s = settings_;
   const double rho0 = s.rest_density, g2 = s.gamma2, g3 = s.gamma3, omega = s.omega;
   prepare_boundary_terms();
-  scratch_.s.resize(n);
-  scratch_.a_ii.resize(n);
-  scratch_.p_over_rho2.resize(n);
+  scratch_->s.resize(n);
+  scratch_->a_ii.resize(n);
+  scratch_->p_over_rho2.resize(n);
   const bool mirror = s.boundary_pressure == BoundaryPressure::Mirroring;
   const bool extrapolate = s.boundary_pressure == BoundaryPressure::Extrapolation;
   const bool solved_boundary = s.boundary_pressure == BoundaryPressure::Solved;
@@ -109,18 +109,18 @@ Index Simulation::prepare_pressure_system(double dt) {
       const Index b = fb_.j[k];
       const double mb = rho0 * boundary_.volume[b];
       div_b += mb * (vi - vb_scale * boundary_.v[b]).dot(fb_.grad[k].cast<double>());
-      if (coupling && scratch_.ext_wsum[b] > 0.0) e += (mb * fb_.w[k] / scratch_.ext_wsum[b]) * fb_.grad[k].cast<double>();
+      if (coupling && scratch_->ext_wsum[b] > 0.0) e += (mb * fb_.w[k] / scratch_->ext_wsum[b]) * fb_.grad[k].cast<double>();
     }
-    scratch_.s[i] = (rho0 - rhoi) / dt - (div + g2 * div_b);
+    scratch_->s[i] = (rho0 - rhoi) / dt - (div + g2 * div_b);
     const double inv_rho2 = 1.0 / (rhoi * rhoi);
-    const Vec2 d = -inv_rho2 * (sum_grad + (c * g3) * scratch_.grad_b[i]) - (g3 / (rho0 * rho0)) * e;
-    double aii = dt * (d.dot(sum_grad + g2 * scratch_.grad_b[i]) - mass_ * mass_ * inv_rho2 * grad2);
+    const Vec2 d = -inv_rho2 * (sum_grad + (c * g3) * scratch_->grad_b[i]) - (g3 / (rho0 * rho0)) * e;
+    double aii = dt * (d.dot(sum_grad + g2 * scratch_->grad_b[i]) - mass_ * mass_ * inv_rho2 * grad2);
     if (coupling) aii += dt * mass_ * (g3 / (rho0 * rho0)) * extrapolation_coupling(i);
-    scratch_.a_ii[i] = aii;
+    scratch_->a_ii[i] = aii;
     double p0 = kWarmStartFactor * fluid_.p[i];
-    if (thesis_init) p0 = aii != 0.0 ? std::max(omega * scratch_.s[i] / aii, 0.0) : 0.0;
+    if (thesis_init) p0 = aii != 0.0 ? std::max(omega * scratch_->s[i] / aii, 0.0) : 0.0;
     fluid_.p[i] = p0;
-    scratch_.p_over_rho2[i] = p0 * inv_rho2;
+    scratch_->p_over_rho2[i] = p0 * inv_rho2;
   });
 
   return active_samples;
@@ -134,8 +134,8 @@ void Simulation::iterate_pressure(double dt, Index active_samples, StepStats& st
   const SolverSettings& s = settings_;
   const bool solved_boundary = s.boundary_pressure == BoundaryPressure::Solved;
   const Index block = plan_jacobi_sweep();  // how the sweeps are scheduled (jacobi_sweep.cpp)
-  scratch_.err.resize(n);
-  scratch_.a_p.resize(n);
+  scratch_->err.resize(n);
+  scratch_->a_p.resize(n);
   int l = 0;
   double avg = 0.0;
   const PressureTerms terms = pressure_terms(dt);
@@ -155,7 +155,7 @@ void Simulation::iterate_pressure(double dt, Index active_samples, StepStats& st
   if (has_moving_boundaries()) add_boundary_pressure_work(dt);
   st.iterations = l;
   st.avg_error_percent = avg;
-  st.max_error_percent = parallel_max(n, 0.0, [&](Index i) { return scratch_.err[i]; });
+  st.max_error_percent = parallel_max(n, 0.0, [&](Index i) { return scratch_->err[i]; });
 }
 
 // Pressure boundaries (Band et al. 2018, "Pressure boundaries for implicit incompressible
@@ -172,8 +172,8 @@ Index Simulation::prepare_solved_boundary(double dt) {
   const bool thesis_init = s.pressure_init == PressureInit::Thesis;
   const Index nb = boundary_.size();
   const double vb_scale = boundary_velocity_in_source_ ? 1.0 : 0.0;
-  scratch_.bnd_s.resize(nb);
-  scratch_.bnd_aii.resize(nb);
+  scratch_->bnd_s.resize(nb);
+  scratch_->bnd_aii.resize(nb);
   parallel_for(nb, [&](Index b) {
     double wsum = 0.0, div = 0.0, grad2 = 0.0, lumped = 0.0;
     for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) {
@@ -182,7 +182,7 @@ Index Simulation::prepare_solved_boundary(double dt) {
       wsum += bf_.w[k];
       div += (vb_scale * boundary_.v[b] - fluid_.v[f]).dot(gw);
       grad2 += gw.squaredNorm();
-      lumped += gw.dot(scratch_.grad_b[f]);
+      lumped += gw.dot(scratch_->grad_b[f]);
     }
     // rho_b as in boundary_density, summed in the same pass over the sample's pairs.
     const double sb = (rho0 - (mass_ * wsum + g1r)) / dt - mass_ * div;
@@ -192,20 +192,20 @@ Index Simulation::prepare_solved_boundary(double dt) {
     // and Jacobi with the plain diagonal overshoots on them by their number and diverges.
     const double abb = std::min(-dt * s.gamma3 * boundary_.volume[b] / rho0 * mass_ * grad2,
                                 dt * s.gamma3 * mass_ / (rho0 * rho0) * lumped);
-    scratch_.bnd_s[b] = sb;
-    scratch_.bnd_aii[b] = abb;
+    scratch_->bnd_s[b] = sb;
+    scratch_->bnd_aii[b] = abb;
     double p0 = abb != 0.0 ? kWarmStartFactor * boundary_.p[b] : 0.0;
     if (thesis_init) p0 = abb != 0.0 ? std::max(s.omega * sb / abb, 0.0) : 0.0;
     boundary_.p[b] = p0;
-    scratch_.pb_over_rho2[b] = p0 * inv_rho0_2;
+    scratch_->pb_over_rho2[b] = p0 * inv_rho0_2;
   });
-  return static_cast<Index>(parallel_sum(nb, [&](Index b) { return scratch_.bnd_aii[b] != 0.0 ? 1.0 : 0.0; }));
+  return static_cast<Index>(parallel_sum(nb, [&](Index b) { return scratch_->bnd_aii[b] != 0.0 ? 1.0 : 0.0; }));
 }
 
 // (Ap)_b of a pressure-boundary sample (prepare_solved_boundary) from the fluid's a_p.
 double Simulation::sample_operator_of(Index b, const PressureTerms& t) const {
   double ap = 0.0;
-  for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) ap -= scratch_.a_p[bf_.j[k]].dot(bf_.grad[k].cast<double>());
+  for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) ap -= scratch_->a_p[bf_.j[k]].dot(bf_.grad[k].cast<double>());
   return ap * (t.dt * t.mass);
 }
 
@@ -215,13 +215,13 @@ double Simulation::sample_operator_of(Index b, const PressureTerms& t) const {
 double Simulation::jacobi_update_boundary(const PressureTerms& t) {
   const double inv_rho0_2 = 1.0 / (settings_.rest_density * settings_.rest_density);
   return parallel_sum(boundary_.size(), [&](Index b) {
-    const double abb = scratch_.bnd_aii[b];
+    const double abb = scratch_->bnd_aii[b];
     if (abb == 0.0) return 0.0;  // no fluid neighbour: p_b stays 0
     const double ap = sample_operator_of(b, t);
-    const double p = std::max(boundary_.p[b] + t.omega / abb * (scratch_.bnd_s[b] - ap), 0.0);
+    const double p = std::max(boundary_.p[b] + t.omega / abb * (scratch_->bnd_s[b] - ap), 0.0);
     boundary_.p[b] = p;
-    scratch_.pb_over_rho2[b] = p * inv_rho0_2;
-    return std::max(t.err_scale * (ap - scratch_.bnd_s[b]), 0.0);
+    scratch_->pb_over_rho2[b] = p * inv_rho0_2;
+    return std::max(t.err_scale * (ap - scratch_->bnd_s[b]), 0.0);
   });
 }
 
@@ -246,8 +246,8 @@ Simulation::PressureTerms Simulation::pressure_terms(double dt) const {
 
 void Simulation::compute_pressure_acceleration() {
   const PressureTerms t = pressure_terms(0.0);
-  scratch_.a_p.resize(fluid_.size());
-  parallel_for(fluid_.size(), [&](Index i) { scratch_.a_p[i] = pressure_acceleration_of(i, t); });
+  scratch_->a_p.resize(fluid_.size());
+  parallel_for(fluid_.size(), [&](Index i) { scratch_->a_p[i] = pressure_acceleration_of(i, t); });
 }
 
 }  // namespace sluice

@@ -1,10 +1,43 @@
 #pragma once
-// Private to the solver's files: constants and helpers that several phases share.
+// Private to the solver's files: the solvers' scratch arrays, and constants and helpers
+// that several phases share.
 // Not part of the public interface (src/solver/simulation.h).
 #include <algorithm>
 #include <chrono>
 
+#include <cstdint>
+#include <vector>
+
 #include "core/types.h"
+
+namespace sluice {
+
+// Per-step scratch of the pressure solvers ("hot" arrays, reused between steps).
+struct SolverScratch {
+  std::vector<Vec2> a_p;        // pressure acceleration (Eq. 11/24)
+  std::vector<Vec2> grad_b;     // sum_b m_b grad W_ib, fixed within a step
+  std::vector<double> a_ii;     // diagonal (Eq. 22/26)
+  std::vector<double> grad_scale;  // c_i of the gradient correction (compute_density)
+  std::vector<double> s;        // source term (Eq. 19)
+  std::vector<double> err;      // predicted compression of Eq. 23 [%]
+  // Fused Jacobi sweep (Simulation::jacobi_sweep): the bounds of its ranges (one per
+  // thread), for each particle the number of blocks after its own that its update
+  // waits for (-1: deferred until every range is done), and the deferred particles.
+  std::vector<Index> sweep_range;
+  std::vector<std::int8_t> sweep_lag;
+  std::vector<Index> deferred;         // ascending
+  std::vector<double> err_partial;     // sums of err over blocks of kReduceBlock
+  std::vector<double> p_over_rho2;   // p_i / rho_i^2 of fluid particles
+  std::vector<double> pb_over_rho2;  // p_b / rho0^2 of boundary particles
+  std::vector<double> ext_wsum;      // sum_f W_bf of each boundary particle (Eq. 25 denominator)
+  std::vector<double> ext_gravity;   // g . sum_f rho_f x_bf W_bf (Eq. 25 hydrostatic term)
+  // Pressure boundaries (BoundaryPressure::Solved): each sample's source term and
+  // diagonal, the counterparts of Eq. 19 and 22 for its density constraint.
+  std::vector<double> bnd_s, bnd_aii;
+  std::vector<double> work;  // boundary work on each fluid particle in this step [J/m]
+};
+
+}  // namespace sluice
 
 namespace sluice::solver_detail {
 

@@ -6,6 +6,7 @@
 
 #include "core/check.h"
 #include "core/parallel.h"
+#include "solver/internal.h"
 #include "solver/pressure_kernels.h"
 
 namespace sluice {
@@ -42,24 +43,24 @@ Index Simulation::jacobi_block_size() const {
 // particles. Only the speed depends on it, never the bits.
 Index Simulation::plan_jacobi_sweep() {
   const Index block = jacobi_block_size();
-  scratch_.deferred.clear();
+  scratch_->deferred.clear();
   if (block == 0) return 0;
   const Index n = fluid_.size();
   plan_jacobi_ranges();
-  SLUICE_ASSERT(scratch_.sweep_range.front() == 0 && scratch_.sweep_range.back() == n &&
-                    std::is_sorted(scratch_.sweep_range.begin(), scratch_.sweep_range.end()),
+  SLUICE_ASSERT(scratch_->sweep_range.front() == 0 && scratch_->sweep_range.back() == n &&
+                    std::is_sorted(scratch_->sweep_range.begin(), scratch_->sweep_range.end()),
                 "the sweep's ranges cover the particles in order");
-  scratch_.sweep_lag.resize(n);
+  scratch_->sweep_lag.resize(n);
   parallel_for(n, [&](Index i) {
     Index jmin = i, jmax = i;
     for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
       jmin = std::min(jmin, ff_.j[k]);
       jmax = std::max(jmax, ff_.j[k]);
     }
-    scratch_.sweep_lag[i] = sweep_lag_of(i, jmin, jmax, block);
+    scratch_->sweep_lag[i] = sweep_lag_of(i, jmin, jmax, block);
   });
   for (Index i = 0; i < n; ++i)
-    if (scratch_.sweep_lag[i] < 0) scratch_.deferred.push_back(i);
+    if (scratch_->sweep_lag[i] < 0) scratch_->deferred.push_back(i);
   return block;
 }
 
@@ -70,7 +71,7 @@ void Simulation::plan_jacobi_ranges() {
   const Index ranges = jacobi_ranges_ > 0 ? jacobi_ranges_ : static_cast<Index>(omp_get_max_threads());
   auto work = [&](Index i) { return static_cast<double>(ff_.offset[i]) + 4.0 * i; };
   const double total = work(n);
-  std::vector<Index>& range = scratch_.sweep_range;
+  std::vector<Index>& range = scratch_->sweep_range;
   range.assign(static_cast<size_t>(ranges) + 1, n);
   range[0] = 0;
   for (Index r = 1; r < ranges; ++r) {
@@ -94,7 +95,7 @@ void Simulation::plan_jacobi_ranges() {
 // when i's data have left the cache. jmin, jmax: i's smallest and largest neighbour
 // index (i itself when it has none).
 std::int8_t Simulation::sweep_lag_of(Index i, Index jmin, Index jmax, Index block) const {
-  const std::vector<Index>& range = scratch_.sweep_range;
+  const std::vector<Index>& range = scratch_->sweep_range;
   const Index r = static_cast<Index>(std::upper_bound(range.begin(), range.end(), i) - range.begin()) - 1;
   const Index begin = range[r], end = range[r + 1];
   if (jmin < begin || jmax >= end) return -1;
@@ -121,16 +122,16 @@ double Simulation::jacobi_sweep(Index block, const PressureTerms& t) {
     compute_pressure_acceleration();
     return parallel_sum(n, [&](Index i) {
       jacobi_update_of(i, t);
-      return scratch_.err[i];
+      return scratch_->err[i];
     });
   }
-  const std::vector<Index>& range = scratch_.sweep_range;
+  const std::vector<Index>& range = scratch_->sweep_range;
   const Index ranges = static_cast<Index>(range.size()) - 1;
-  const Index nd = static_cast<Index>(scratch_.deferred.size());
+  const Index nd = static_cast<Index>(scratch_->deferred.size());
   // Sum of Eq. 23 over fixed blocks of kReduceBlock particles, added in block order as
   // in parallel_sum: the same bits whatever the sweep's blocks, ranges and threads.
   const Index sum_blocks = (n + kReduceBlock - 1) / kReduceBlock;
-  std::vector<double>& partial = scratch_.err_partial;
+  std::vector<double>& partial = scratch_->err_partial;
   partial.assign(static_cast<size_t>(sum_blocks), 0.0);
   // A thread may sweep several ranges one after the other (fewer threads than ranges):
   // a range's early updates touch no particle of another range, so that is safe too.
@@ -139,12 +140,12 @@ double Simulation::jacobi_sweep(Index block, const PressureTerms& t) {
 #pragma omp for schedule(dynamic, 1)
     for (Index r = 0; r < ranges; ++r) sweep_range(range[r], range[r + 1], block, t);
 #pragma omp for schedule(dynamic, kForChunk)
-    for (Index k = 0; k < nd; ++k) jacobi_update_of(scratch_.deferred[k], t);
+    for (Index k = 0; k < nd; ++k) jacobi_update_of(scratch_->deferred[k], t);
 #pragma omp for schedule(dynamic, 1)
     for (Index b = 0; b < sum_blocks; ++b) {
       const Index end = std::min(n, (b + 1) * kReduceBlock);
       double sum = 0.0;
-      for (Index i = b * kReduceBlock; i < end; ++i) sum += scratch_.err[i];
+      for (Index i = b * kReduceBlock; i < end; ++i) sum += scratch_->err[i];
       partial[static_cast<size_t>(b)] = sum;
     }
   }
@@ -156,11 +157,11 @@ double Simulation::jacobi_sweep(Index block, const PressureTerms& t) {
 // One range of the fused sweep, blocks in order: block c's accelerations, then the
 // updates of the particles of blocks c - kMaxSweepLag .. c that waited for block c.
 void Simulation::sweep_range(Index begin, Index end, Index block, const PressureTerms& t) {
-  const std::vector<std::int8_t>& lag = scratch_.sweep_lag;
+  const std::vector<std::int8_t>& lag = scratch_->sweep_lag;
   // (Bounds computed so that no sum exceeds end: a block may be as large as Index allows.)
   for (Index c = begin, c_end = begin; c < end; c = c_end) {
     c_end = end - c > block ? c + block : end;
-    for (Index i = c; i < c_end; ++i) scratch_.a_p[i] = pressure_acceleration_of(i, t);
+    for (Index i = c; i < c_end; ++i) scratch_->a_p[i] = pressure_acceleration_of(i, t);
     for (int d = kMaxSweepLag; d >= 0; --d) {
       if (static_cast<std::int64_t>(d) * block > c - begin) continue;  // d blocks back is before the range
       const Index b0 = c - d * block, b1 = d == 0 ? c_end : b0 + block;

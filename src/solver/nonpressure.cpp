@@ -1,6 +1,7 @@
 #include "solver/simulation.h"
 
 #include "core/parallel.h"
+#include "solver/internal.h"
 
 namespace sluice {
 
@@ -10,7 +11,7 @@ namespace sluice {
 //   a_i += -sum_j m_j Pi_ij grad W_ij,  Pi_ij = -alpha c h mu_ij / rho_ij for v_ij . x_ij < 0,
 //   mu_ij = v_ij . x_ij / (|x_ij|^2 + 0.01 h^2),  rho_ij = (rho_i + rho_j) / 2.
 // With both off the neighbour pass is skipped. The boundary pairs' share of a_v, times
-// the boundary velocity, is the boundaries' work on the fluid (scratch_.work).
+// the boundary velocity, is the boundaries' work on the fluid (scratch_->work).
 void Simulation::apply_nonpressure(double dt) {
   const Vec2 g = settings_.gravity;
   const double nu = settings_.viscosity, rho0 = settings_.rest_density;
@@ -20,7 +21,7 @@ void Simulation::apply_nonpressure(double dt) {
     parallel_for(n, [&](Index i) { fluid_.v[i] += dt * g; });
     return;
   }
-  std::vector<Vec2>& a_v = scratch_.a_p;  // reused as scratch: a_p is recomputed later
+  std::vector<Vec2>& a_v = scratch_->a_p;  // reused as scratch: a_p is recomputed later
   a_v.resize(n);
   const double eps = 0.01 * setup_.spacing * setup_.spacing;
   const bool work = has_moving_boundaries();
@@ -47,7 +48,7 @@ void Simulation::apply_nonpressure(double dt) {
       if (work) w += a.dot(boundary_.v[b]);
     }
     a_v[i] = acc;
-    if (work) scratch_.work[i] += dt * mass_ * w;
+    if (work) scratch_->work[i] += dt * mass_ * w;
   });
   parallel_for(n, [&](Index i) { fluid_.v[i] += dt * (a_v[i] + g); });
 }

@@ -3,22 +3,23 @@
 // Jacobi sweep's loops (jacobi_sweep.cpp) and the pressure solvers (iisph.cpp).
 #include <algorithm>
 
+#include "solver/internal.h"
 #include "solver/simulation.h"
 
 namespace sluice {
 
 [[gnu::always_inline]] inline Vec2 Simulation::pressure_acceleration_of(Index i, const PressureTerms& t) const {
-  const std::vector<double>& pr = scratch_.p_over_rho2;
+  const std::vector<double>& pr = scratch_->p_over_rho2;
   const double pri = pr[i];
   Vec2 a = Vec2::Zero();
   for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) a += (pri + pr[ff_.j[k]]) * ff_.grad[k].cast<double>();
   a *= -t.mass;
-  a -= (t.c_gamma3 * pri) * scratch_.grad_b[i];
+  a -= (t.c_gamma3 * pri) * scratch_->grad_b[i];
   if (t.boundary_field) {
     Vec2 ab = Vec2::Zero();
     for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
       const Index b = fb_.j[k];
-      ab += (boundary_.volume[b] * scratch_.pb_over_rho2[b]) * fb_.grad[k].cast<double>();
+      ab += (boundary_.volume[b] * scratch_->pb_over_rho2[b]) * fb_.grad[k].cast<double>();
     }
     a -= t.gamma3_rho0 * ab;
   }
@@ -30,19 +31,19 @@ namespace sluice {
 // with negative pressures clamped, and the predicted compression of Eq. 23 (stored in
 // err). Reads neighbours' a_p, writes only particle i.
 [[gnu::always_inline]] inline double Simulation::pressure_operator_of(Index i, const PressureTerms& t) const {
-  const Vec2 ai = scratch_.a_p[i];
+  const Vec2 ai = scratch_->a_p[i];
   double ap = 0.0;
-  for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) ap += (ai - scratch_.a_p[ff_.j[k]]).dot(ff_.grad[k].cast<double>());
-  return t.dt * (t.mass * ap + t.gamma2 * ai.dot(scratch_.grad_b[i]));
+  for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) ap += (ai - scratch_->a_p[ff_.j[k]]).dot(ff_.grad[k].cast<double>());
+  return t.dt * (t.mass * ap + t.gamma2 * ai.dot(scratch_->grad_b[i]));
 }
 
 [[gnu::always_inline]] inline void Simulation::jacobi_update_of(Index i, const PressureTerms& t) {
   const double ap = pressure_operator_of(i, t);
-  const double si = scratch_.s[i], aii = scratch_.a_ii[i];
+  const double si = scratch_->s[i], aii = scratch_->a_ii[i];
   const double p = aii != 0.0 ? std::max(fluid_.p[i] + t.omega / aii * (si - ap), 0.0) : 0.0;
   fluid_.p[i] = p;
-  scratch_.p_over_rho2[i] = p / (fluid_.rho[i] * fluid_.rho[i]);
-  scratch_.err[i] = std::max(t.err_scale * (ap - si), 0.0);
+  scratch_->p_over_rho2[i] = p / (fluid_.rho[i] * fluid_.rho[i]);
+  scratch_->err[i] = std::max(t.err_scale * (ap - si), 0.0);
 }
 
 }  // namespace sluice

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "core/parallel.h"
+#include "solver/internal.h"
 #include "solver/pressure_kernels.h"
 
 namespace sluice {
@@ -22,10 +23,10 @@ int SolverProbe::iterate_pressure() {
   return st.iterations;
 }
 
-const std::vector<double>& SolverProbe::source() const { return sim_.scratch_.s; }
-const std::vector<double>& SolverProbe::diagonal() const { return sim_.scratch_.a_ii; }
-const std::vector<double>& SolverProbe::sample_source() const { return sim_.scratch_.bnd_s; }
-const std::vector<double>& SolverProbe::sample_diagonal() const { return sim_.scratch_.bnd_aii; }
+const std::vector<double>& SolverProbe::source() const { return sim_.scratch_->s; }
+const std::vector<double>& SolverProbe::diagonal() const { return sim_.scratch_->a_ii; }
+const std::vector<double>& SolverProbe::sample_source() const { return sim_.scratch_->bnd_s; }
+const std::vector<double>& SolverProbe::sample_diagonal() const { return sim_.scratch_->bnd_aii; }
 
 void SolverProbe::apply(const std::vector<double>& p, const std::vector<double>& pb, std::vector<double>& ap,
                         std::vector<double>& apb) {
@@ -33,15 +34,15 @@ void SolverProbe::apply(const std::vector<double>& p, const std::vector<double>&
   const Index n = s.fluid_.size(), nb = s.boundary_.size();
   const bool solved = s.settings_.boundary_pressure == BoundaryPressure::Solved;
   const double inv_rho0_2 = 1.0 / (s.settings_.rest_density * s.settings_.rest_density);
-  s.scratch_.p_over_rho2.resize(n);
+  s.scratch_->p_over_rho2.resize(n);
   for (Index i = 0; i < n; ++i) {
     s.fluid_.p[i] = p[i];
-    s.scratch_.p_over_rho2[i] = p[i] / (s.fluid_.rho[i] * s.fluid_.rho[i]);
+    s.scratch_->p_over_rho2[i] = p[i] / (s.fluid_.rho[i] * s.fluid_.rho[i]);
   }
   if (solved)
     for (Index b = 0; b < nb; ++b) {
       s.boundary_.p[b] = pb[b];
-      s.scratch_.pb_over_rho2[b] = pb[b] * inv_rho0_2;
+      s.scratch_->pb_over_rho2[b] = pb[b] * inv_rho0_2;
     }
   s.update_boundary_pressure();
   s.compute_pressure_acceleration();

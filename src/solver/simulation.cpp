@@ -47,11 +47,16 @@ double lattice_kernel_sum(const CubicSpline2D& kernel) {
   return sum;
 }
 
+Simulation::~Simulation() = default;
+Simulation::Simulation(Simulation&&) noexcept = default;
+Simulation& Simulation::operator=(Simulation&&) noexcept = default;
+
 Simulation::Simulation(const SimulationSetup& setup)
     : setup_(setup),
       settings_(setup.solver),
       kernel_(setup.spacing),
-      mass_(setup.solver.rest_density / lattice_kernel_sum(kernel_)) {
+      mass_(setup.solver.rest_density / lattice_kernel_sum(kernel_)),
+      scratch_(std::make_unique<SolverScratch>()) {
   SLUICE_ASSERT(setup.spacing > 0, "the setup's spacing is positive (the scene checks it)");
   SLUICE_ASSERT(setup.boundary_object.empty() || setup.boundary_object.size() == setup.boundary_x.size(),
                 "one object index per boundary sample");
@@ -175,7 +180,7 @@ void Simulation::settle() {
 }
 
 void Simulation::advance(double dt, StepStats& st, bool settling) {
-  if (has_moving_boundaries()) scratch_.work.assign(static_cast<size_t>(fluid_.size()), 0.0);
+  if (has_moving_boundaries()) scratch_->work.assign(static_cast<size_t>(fluid_.size()), 0.0);
   for (const Phase phase : kPhases) {
     if (phase == Phase::Boundary && (settling || !has_moving_boundaries())) continue;  // its time stays 0
     const Stopwatch t;
@@ -243,9 +248,9 @@ double Simulation::choose_time_step() const {
 
 // Semi-implicit Euler (Algorithm 1/2): v(t+dt) = v* + dt a_p, x(t+dt) = x + dt v(t+dt).
 void Simulation::integrate(double dt) {
-  SLUICE_ASSERT(scratch_.a_p.size() == static_cast<size_t>(fluid_.size()), "the pressure solve left one a_p per particle");
+  SLUICE_ASSERT(scratch_->a_p.size() == static_cast<size_t>(fluid_.size()), "the pressure solve left one a_p per particle");
   parallel_for(fluid_.size(), [&](Index i) {
-    fluid_.v[i] += dt * scratch_.a_p[i];
+    fluid_.v[i] += dt * scratch_->a_p[i];
     fluid_.x[i] += dt * fluid_.v[i];
   });
 }
@@ -262,8 +267,8 @@ void Simulation::measure_energy(StepStats& st) const {
   st.kinetic_energy = 0.5 * mass_ * parallel_sum(n, [&](Index i) { return fluid_.v[i].squaredNorm(); });
   st.potential_energy = -mass_ * parallel_sum(n, [&](Index i) { return g.dot(fluid_.x[i]); });
   st.mechanical_energy = st.kinetic_energy + st.potential_energy;
-  st.boundary_work = scratch_.work.size() == static_cast<size_t>(n) && has_moving_boundaries()
-                         ? parallel_sum(n, [&](Index i) { return scratch_.work[i]; })
+  st.boundary_work = scratch_->work.size() == static_cast<size_t>(n) && has_moving_boundaries()
+                         ? parallel_sum(n, [&](Index i) { return scratch_->work[i]; })
                          : 0.0;
 }
 

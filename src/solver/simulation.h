@@ -3,6 +3,7 @@
 // (chapter 3, Algorithm 2) or WCSPH (section 2.3.1) pressure solver, boundary
 // handling of chapter 4, and time control landing exactly on frame times.
 // No globals: several simulations can coexist in one process.
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -22,30 +23,8 @@ class SimulationUnstable : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Per-step scratch of the pressure solvers ("hot" arrays, reused between steps).
-struct SolverScratch {
-  std::vector<Vec2> a_p;        // pressure acceleration (Eq. 11/24)
-  std::vector<Vec2> grad_b;     // sum_b m_b grad W_ib, fixed within a step
-  std::vector<double> a_ii;     // diagonal (Eq. 22/26)
-  std::vector<double> grad_scale;  // c_i of the gradient correction (compute_density)
-  std::vector<double> s;        // source term (Eq. 19)
-  std::vector<double> err;      // predicted compression of Eq. 23 [%]
-  // Fused Jacobi sweep (Simulation::jacobi_sweep): the bounds of its ranges (one per
-  // thread), for each particle the number of blocks after its own that its update
-  // waits for (-1: deferred until every range is done), and the deferred particles.
-  std::vector<Index> sweep_range;
-  std::vector<std::int8_t> sweep_lag;
-  std::vector<Index> deferred;         // ascending
-  std::vector<double> err_partial;     // sums of err over blocks of kReduceBlock
-  std::vector<double> p_over_rho2;   // p_i / rho_i^2 of fluid particles
-  std::vector<double> pb_over_rho2;  // p_b / rho0^2 of boundary particles
-  std::vector<double> ext_wsum;      // sum_f W_bf of each boundary particle (Eq. 25 denominator)
-  std::vector<double> ext_gravity;   // g . sum_f rho_f x_bf W_bf (Eq. 25 hydrostatic term)
-  // Pressure boundaries (BoundaryPressure::Solved): each sample's source term and
-  // diagonal, the counterparts of Eq. 19 and 22 for its density constraint.
-  std::vector<double> bnd_s, bnd_aii;
-  std::vector<double> work;  // boundary work on each fluid particle in this step [J/m]
-};
+struct SolverScratch;  // per-step arrays of the pressure solvers (solver/internal.h)
+
 
 double lattice_kernel_sum(const CubicSpline2D& kernel);
 
@@ -76,6 +55,9 @@ struct SimulationState {
 class Simulation {
  public:
   explicit Simulation(const SimulationSetup& setup);
+  ~Simulation();
+  Simulation(Simulation&&) noexcept;
+  Simulation& operator=(Simulation&&) noexcept;
 
   // Advances by one time step (Algorithm 2 for IISPH) and returns its statistics.
   // Throws SimulationUnstable when the state is no longer valid.
@@ -140,7 +122,7 @@ class Simulation {
   void prepare_boundary_terms();              // grad_b, Eq. 25 weights
   void update_boundary_pressure();            // Eq. 25 / 4.2.2 / 4.2.3 / WCSPH's solved p_b -> pb_over_rho2
   Index prepare_solved_boundary(double dt);   // bnd_s, bnd_aii, p_b^(0); returns the samples with fluid neighbours
-  void add_boundary_pressure_work(double dt);  // scratch_.work += the pressure force's share
+  void add_boundary_pressure_work(double dt);  // scratch work += the pressure force's share
   void compute_pressure_acceleration();       // Eq. 24 -> a_p
   // Constants of Eq. 20, 21, 23, 24 within a step, read once per sweep.
   struct PressureTerms {
@@ -155,7 +137,7 @@ class Simulation {
   void jacobi_update_of(Index i, const PressureTerms& t);                 // Eq. 20, 21, 23 for one particle
   Index plan_jacobi_sweep();  // block size (0: plain passes), ranges, lags, deferred particles
   Index jacobi_block_size() const;
-  void plan_jacobi_ranges();                                  // scratch_.sweep_range
+  void plan_jacobi_ranges();                                  // the sweep's ranges
   std::int8_t sweep_lag_of(Index i, Index jmin, Index jmax, Index block) const;
   double jacobi_sweep(Index block, const PressureTerms& t);  // Eq. 24, then 20, 21, 23 for all; returns the sum of Eq. 23
   void sweep_range(Index begin, Index end, Index block, const PressureTerms& t);
@@ -180,7 +162,7 @@ class Simulation {
 
   SpatialHashGrid fluid_grid_, boundary_grid_;
   NeighborLists ff_, fb_, bf_;  // fluid-fluid, fluid-boundary, boundary-fluid (transpose of fb)
-  SolverScratch scratch_;
+  std::unique_ptr<SolverScratch> scratch_;  // never null
   bool brute_force_ = false;
   bool boundary_velocity_in_source_ = true;
   Index jacobi_block_ = 0;   // 0: jacobi_block_size() chooses

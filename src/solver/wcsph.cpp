@@ -14,12 +14,12 @@ void Simulation::solve_pressure_wcsph(double dt, StepStats& st) {
   const Index n = fluid_.size();
   const double rho0 = settings_.rest_density, k = settings_.stiffness;
   prepare_boundary_terms();
-  scratch_.p_over_rho2.resize(n);
+  scratch_->p_over_rho2.resize(n);
   parallel_for(n, [&](Index i) {
     const double rho = fluid_.rho[i];
     const double p = std::max(k * (rho / rho0 - 1.0), 0.0);
     fluid_.p[i] = p;
-    scratch_.p_over_rho2[i] = p / (rho * rho);
+    scratch_->p_over_rho2[i] = p / (rho * rho);
   });
   update_boundary_pressure();
   compute_pressure_acceleration();
