@@ -32,7 +32,9 @@ if ! have_libfuzzer; then
   have_libfuzzer || { echo "fuzz: clang is installed but libFuzzer (libclang_rt.fuzzer) is not found" >&2; exit 1; }
 fi
 
-sources=(fuzz/scene_fuzzer.cpp src/scene/scene.cpp src/core/shapes.cpp src/solver/motion.cpp src/solver/settings.cpp)
+sources=(fuzz/scene_fuzzer.cpp src/scene/build.cpp src/scene/json_reader.cpp src/scene/overrides.cpp
+         src/scene/read_settings.cpp src/scene/read_shapes.cpp src/scene/read_motion.cpp src/scene/sample_file.cpp
+         src/core/shapes.cpp src/solver/motion.cpp src/solver/settings.cpp)
 mkdir -p "$out/corpus" "$out/artifacts"
 # Rebuild only when a source or header changed since the last build.
 if [ ! -x "$out/scene_fuzzer" ] || [ -n "$(find src fuzz -newer "$out/scene_fuzzer" -type f | head -1)" ]; then

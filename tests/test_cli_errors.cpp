@@ -112,30 +112,30 @@ std::vector<Case> cases() {
       {"non-object root", {{"root.json", "[1, 2]"}}, {"simulate", "root.json", "-q"}, 2,
        {"root.json: the scene must be a JSON object {...}, got [1,2]"}},
       {"unknown key", {{"x.json", tiny(R"("solver": {"tolerence": 0.1},)")}}, {"simulate", "x.json", "-q"}, 2,
-       {"x.json: /solver/tolerence: unknown key; allowed keys: type, rest_density", "tolerance"}},
+       {"x.json:1:26: /solver/tolerence: unknown key; allowed keys: type, rest_density", "tolerance"}},
       {"wrong type", {{"x.json", tiny(R"("stability": {"bounds_margin": "far"},)")}}, {"simulate", "x.json", "-q"}, 2,
-       {"x.json: /stability/bounds_margin: expected a number, got \"far\""}},
+       {"x.json:1:33: /stability/bounds_margin: expected a number, got \"far\""}},
       {"out-of-range value", {{"x.json", tiny(R"("solver": {"omega": 1.5},)")}}, {"simulate", "x.json", "-q"}, 2,
-       {"x.json: /solver/omega: value 1.5 is out of range; must be in (0, 1]"}},
+       {"x.json:1:22: /solver/omega: value 1.5 is out of range; must be in (0, 1]"}},
       {"negative dt", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "time.dt=-0.001"}, 2,
        {"x.json: /time/dt: value -0.001 is out of range; must be > 0 [s]"}},
       {"unknown solver type", {{"x.json", tiny(R"("solver": {"type": "sph"},)")}}, {"simulate", "x.json", "-q"}, 2,
-       {"x.json: /solver/type: invalid value \"sph\"; must be one of: iisph, wcsph"}},
+       {"x.json:1:21: /solver/type: invalid value \"sph\"; must be one of: iisph, wcsph"}},
       {"duplicate key", {{"x.json", tiny(R"("spacing": 0.1,)")}}, {"simulate", "x.json", "-q"}, 2,
-       {"x.json: /spacing: duplicate key"}},
+       {"x.json:1:45: /spacing: duplicate key"}},
       {"fluid entirely inside walls",
        {{"x.json", tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
                         R"([{"shape": "circle", "center": [0.15, 0.15], "radius": 1, "fluid_side": "outside"}])")}},
        {"simulate", "x.json", "-q"}, 2,
-       {"x.json: /fluid: the scene has no fluid particles (36 lattice points, all removed inside boundaries)"}},
+       {"x.json:2:12: /fluid: the scene has no fluid particles (36 lattice points, all removed inside boundaries)"}},
       {"zero fluid particles", {{"x.json", tiny("", "[]")}}, {"simulate", "x.json", "-q"}, 2,
-       {"x.json: /fluid: the scene has no fluid particles (0 lattice points"}},
+       {"x.json:2:12: /fluid: the scene has no fluid particles (0 lattice points"}},
       {"missing scene file", {}, {"simulate", "nope.json", "-q"}, 2,
        {"sluice: scene error: nope.json: cannot open scene file: no such file"}},
       {"directory as the scene", {{"scenes/keep", ""}}, {"simulate", "scenes", "-q"}, 2,
        {"scenes: is a directory; expected a scene file (JSON)"}},
       {"nesting too deep", {{"deep.json", std::string(100000, '[') + std::string(100000, ']')}},
-       {"simulate", "deep.json", "-q"}, 2, {"deep.json: /0/0/0/", "nested more than 100 levels deep"}},
+       {"simulate", "deep.json", "-q"}, 2, {"deep.json:1:101: /0/0/0/", "nested more than 100 levels deep"}},
 
       // --- overrides ----------------------------------------------------------------------
       {"bad --set path", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "solver..tolerance=1"}, 2,
@@ -151,7 +151,7 @@ std::vector<Case> cases() {
 
       // --- resource limits ----------------------------------------------------------------
       {"too many fluid particles", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "spacing=1e-6"}, 2,
-       {"x.json: /fluid/0: the fluid would have more than 20000000 lattice points; increase /spacing (now 1e-06 m)"}},
+       {"x.json:2:13: /fluid/0: the fluid would have more than 20000000 lattice points; increase /spacing (now 1e-06 m)"}},
       {"too many boundary samples", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "boundaries.0.spacing=1e-9"}, 2,
        {"x.json: /boundaries/0: would create about", "boundary samples; the limit is 20000000"}},
       {"layers spreading out", {{"x.json", ok}},
@@ -160,7 +160,7 @@ std::vector<Case> cases() {
       {"too many frames", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "time.duration=1e6", "--set", "time.fps=1e3"}, 2,
        {"x.json: /time: duration 1000000 s at fps 1000 makes 1000000000 frames; the limit is 10000000"}},
       {"huge resolution", {{"x.json", tiny(R"("render": {"resolution": [100000, 720]},)")}}, {"simulate", "x.json", "-q"}, 2,
-       {"x.json: /render/resolution/0: value 100000 is out of range; must be an integer in [2, 16384]"}},
+       {"x.json:1:28: /render/resolution/0: value 100000 is out of range; must be an integer in [2, 16384]"}},
 
       // --- flags --------------------------------------------------------------------------
       {"bad flag value", {{"x.json", ok}}, {"simulate", "x.json", "--threads", "abc"}, 1,
@@ -225,21 +225,21 @@ std::vector<Case> cases() {
        {"--range -inf:inf: expected lo:hi, finite numbers with lo < hi and hi - lo finite"}},
       {"--range nan:1", {{"x.json", ok}}, {"render", "x.json", "-q", "--range=nan:1"}, 1, {"--range nan:1: expected lo:hi"}},
       {"render.range +-1e308", {{"x.json", tiny(R"("render": {"range": [-1e308, 1e308]},)")}}, {"render", "x.json", "-q"}, 2,
-       {"x.json: /render/range: range [-1e+308,1e+308] must be [lo, hi] with lo < hi and hi - lo finite"}},
+       {"x.json:1:22: /render/range: range [-1e+308,1e+308] must be [lo, hi] with lo < hi and hi - lo finite"}},
       // 7: --max-fraction nan
       {"compare --max-fraction nan", {{"a.png", "x"}}, {"compare", "a.png", "a.png", "--max-fraction", "nan"}, 2,
        {"sluice: --max-fraction: expected a number >= 0 and <= 1, got 'nan'"}},
       // 8: a polygon without area
       {"zero-area fluid polygon", {{"x.json", tiny("", R"([{"shape": "polygon", "points": [[0, 0], [0.3, 0.3], [0.15, 0.15]]}])")}},
        {"simulate", "x.json", "-q"}, 2,
-       {"x.json: /fluid: the scene has no fluid particles (0 lattice points: the fluid blocks are empty or have no area"}},
+       {"x.json:2:12: /fluid: the scene has no fluid particles (0 lattice points: the fluid blocks are empty or have no area"}},
       // 12: a polyline running back over itself
       {"self-overlapping polyline",
        {{"x.json", tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
                         R"([{"shape": "box", "min": [0, 0], "max": [0.5, 0.5]},
                             {"shape": "polyline", "points": [[0, -0.2], [1, -0.2], [0.5, -0.2]]}])")}},
        {"simulate", "x.json", "-q"}, 2,
-       {"x.json: /boundaries/1/points: segment 0 crosses or runs along another segment; the polyline must not intersect or overlap itself"}},
+       {"x.json:4:61: /boundaries/1/points: segment 0 crosses or runs along another segment; the polyline must not intersect or overlap itself"}},
       // 13: compare's inputs have their own exit status (3, an I/O error: docs/cli.md)
       {"compare: missing image", {{"a.png", "x"}}, {"compare", "nope.png", "a.png"}, 3,
        {"sluice: input image error: nope.png: cannot open PNG: No such file or directory"}},
@@ -268,7 +268,7 @@ std::vector<Case> cases() {
        {"sluice: scene error: x.json:2:23: JSON parse error: number overflow parsing '1e999'"}},
       {"points file /dev/null", {{"x.json", tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
                                                   R"([{"shape": "points", "file": "/dev/null"}])")}},
-       {"simulate", "x.json", "-q"}, 2, {"x.json: /boundaries/0/file: \"/dev/null\" is not a regular file"}},
+       {"simulate", "x.json", "-q"}, 2, {"x.json:3:46: /boundaries/0/file: \"/dev/null\" is not a regular file"}},
       {"bytes after a NUL", {{"x.json", ok + std::string(1, '\0') + "garbage"}}, {"simulate", "x.json", "-q"}, 2,
        {"sluice: scene error: x.json:", ": a NUL byte; a scene file is JSON text"}},
       {"still -o a folder", {{"x.json", ok}, {"dir/keep", ""}}, {"still", "x.json", "--time", "0", "-o", "dir"}, 3,
@@ -416,7 +416,7 @@ TEST(SceneLimits, BoundariesTogetherStayUnderTheSampleLimit) {
     walls += std::string(i ? ", " : "") + R"({"shape": "circle", "center": [5, 5], "radius": 1, "spacing": 1e-6, "layers": 1})";
   walls += "]";
   const std::string e = parse_error(tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])", walls));
-  EXPECT_NE(e.find("x.json: /boundaries/3: the boundaries up to this one would create about 24504423 samples"), std::string::npos) << e;
+  EXPECT_NE(e.find("x.json:3:264: /boundaries/3: the boundaries up to this one would create about 24504423 samples"), std::string::npos) << e;
   EXPECT_NE(e.find("the limit is 20000000 of each"), std::string::npos) << e;
 }
 
@@ -425,14 +425,14 @@ TEST(SceneLimits, CoordinatesNearTheRangeOfDouble) {
   const std::string e = parse_error(tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
                                          R"([{"shape": "polyline", "points": [[1.7e308, 0], [1.7e308, 1]], "spacing": 1,
                                               "layer_spacing": 1e308, "layers": 3}])"));
-  EXPECT_NE(e.find("x.json: /boundaries/0: "), std::string::npos) << e;
+  EXPECT_NE(e.find("x.json:3:18: /boundaries/0: "), std::string::npos) << e;
 }
 
 TEST(SceneLimits, LongCurveAtASmallFluidSpacing) {
   // Few samples (spacing 1000 m) but a curve of 10^8 fluid spacings to clear the fluid along.
   const std::string e = parse_error(tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
                                          R"([{"shape": "polyline", "points": [[0, -1], [5e6, -1]], "spacing": 1000}])"));
-  EXPECT_NE(e.find("x.json: /boundaries/0: the curve would be cut into about 100000000 pieces"), std::string::npos) << e;
+  EXPECT_NE(e.find("x.json:3:18: /boundaries/0: the curve would be cut into about 100000000 pieces"), std::string::npos) << e;
 }
 
 }  // namespace

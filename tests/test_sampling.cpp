@@ -1,4 +1,4 @@
-// Non-uniform boundary sampling (src/core/shapes.cpp, read_boundary in scene.cpp): graded
+// Non-uniform boundary sampling (src/core/shapes.cpp, read_boundary in scene/read_shapes.cpp): graded
 // spacing along a segment, boundary samples from a point list (inline or a file) and their
 // errors, and a tank of fluid at rest behind walls sampled sparser and denser than the fluid.
 #include <gtest/gtest.h>
@@ -229,7 +229,7 @@ void expect_errors(const std::vector<BadCase>& cases, const std::string& file) {
   for (const auto& c : cases) {
     SCOPED_TRACE(c.what);
     const std::string msg = error_of(c.text, file);
-    EXPECT_NE(msg.find(file + ": "), std::string::npos) << msg;
+    EXPECT_NE(msg.find(file + ":"), std::string::npos) << msg;
     for (const auto& e : c.expected) EXPECT_NE(msg.find(e), std::string::npos) << "message: " << msg << "\nexpected: " << e;
   }
 }

@@ -165,13 +165,13 @@ TEST(SceneErrors, BadInputsNameFilePathAndAllowed) {
        {"scenes/x.json:4:42: JSON parse error: ", "unexpected string literal"}},
       {"bad literal", "{\"spacing\": 0.01,\n\"fluid\": [],\n\"x\": tru }", {"scenes/x.json:3:9: JSON parse error: ", "invalid literal"}},
       {"unknown top-level key", scene_with(R"("fluids": 1,)"),
-       {"scenes/x.json: /fluids: unknown key; allowed keys: name, spacing, solver, time, stability, output, render, fluid, boundaries"}},
+       {"scenes/x.json:1:12: /fluids: unknown key; allowed keys: name, spacing, solver, time, stability, output, render, fluid, boundaries"}},
       {"unknown nested key", scene_with(R"("solver": {"tolernce": 0.05},)"),
-       {"scenes/x.json: /solver/tolernce: unknown key; allowed keys: type, rest_density, gravity, viscosity, artificial_viscosity, sound_speed, gradient_correction, tolerance,"}},
+       {"scenes/x.json:1:25: /solver/tolernce: unknown key; allowed keys: type, rest_density, gravity, viscosity, artificial_viscosity, sound_speed, gradient_correction, tolerance,"}},
       {"unknown boundary key", scene_with(R"("boundaries": [{"shape": "circle", "center": [0, 0], "radius": 1, "lid": true}],)"),
        {"/boundaries/0/lid: unknown key; allowed keys: shape, name, center, radius, spacing, fluid_side, layers, layer_spacing"}},
       {"wrong type vec2", scene_with("", R"([{"shape": "rectangle", "min": "abc", "max": [1, 1]}])"),
-       {R"(scenes/x.json: /fluid/0/min: expected an array of 2 numbers, got "abc")"}},
+       {R"(scenes/x.json:1:58: /fluid/0/min: expected an array of 2 numbers, got "abc")"}},
       {"float for int", scene_with(R"("solver": {"max_iterations": 10.5},)"),
        {"/solver/max_iterations: expected an integer, got 10.5"}},
       {"float for layers", scene_with(R"("boundaries": [{"shape": "box", "min": [0, 0], "max": [4, 4], "layers": 2.0}],)"),
@@ -182,7 +182,7 @@ TEST(SceneErrors, BadInputsNameFilePathAndAllowed) {
       {"tolerance zero", scene_with(R"("solver": {"tolerance": 0},)"),
        {"/solver/tolerance: value 0 is out of range; must be > 0 (percent)"}},
       {"tolerance negative", scene_with(R"("solver": {"tolerance": -1},)"),
-       {"scenes/x.json: /solver/tolerance: value -1 is out of range; must be > 0 (percent)"}},
+       {"scenes/x.json:1:26: /solver/tolerance: value -1 is out of range; must be > 0 (percent)"}},
       {"omega above 1", scene_with(R"("solver": {"omega": 1.5},)"), {"/solver/omega: value 1.5 is out of range; must be in (0, 1]"}},
       {"dt and cfl", scene_with(R"("time": {"dt": 1e-3, "cfl": 0.4},)"),
        {"/time: both dt and cfl are given; remove \"cfl\"", "or \"dt\""}},
@@ -195,12 +195,12 @@ TEST(SceneErrors, BadInputsNameFilePathAndAllowed) {
        {"/boundaries/0/fluid_side:", "must be one of: left, right"}},
       {"bad shape", scene_with("", R"([{"shape": "square"}])"), {"/fluid/0/shape:", "must be one of: rectangle, ellipse, polygon"}},
       {"missing shape", scene_with("", R"([{"min": [0, 0]}])"), {"/fluid/0/shape: missing required key"}},
-      {"empty fluid array", scene_with("", "[]"), {"scenes/x.json: /fluid: the scene has no fluid particles (0 lattice points"}},
+      {"empty fluid array", scene_with("", "[]"), {"scenes/x.json:1:27: /fluid: the scene has no fluid particles (0 lattice points"}},
       {"zero-area fluid", scene_with("", R"([{"shape": "rectangle", "min": [0, 0], "max": [1, 0]}])"),
        {"/fluid: the scene has no fluid particles (0 lattice points"}},
       {"fluid inside solid circle",
        scene_with(R"("boundaries": [{"shape": "circle", "center": [0.5, 0.5], "radius": 2}],)"),
-       {"scenes/x.json: /fluid: the scene has no fluid particles (100 lattice points, all removed inside boundaries)"}},
+       {"scenes/x.json:1:98: /fluid: the scene has no fluid particles (100 lattice points, all removed inside boundaries)"}},
       {"fluid outside container",
        scene_with(R"("boundaries": [{"shape": "box", "min": [5, 5], "max": [6, 6], "lid": true}],)"),
        {"/fluid: the scene has no fluid particles (100 lattice points, all removed inside boundaries)"}},
@@ -264,6 +264,54 @@ TEST(SceneErrors, DuplicateBoundaryNames) {
   const std::string msg = error_of(scene_with(
       R"("boundaries": [{"shape": "box", "name": "w", "min": [0, 0], "max": [4, 4]}, {"shape": "circle", "name": "w", "center": [2, 2], "radius": 0.1}],)"));
   EXPECT_NE(msg.find("/boundaries/1/name: duplicate name \"w\""), std::string::npos) << msg;
+}
+
+// A value error names the line:column (1-based) of the offending value in the file, like
+// a syntax error; a value an override set, or changed, has none.
+TEST(SceneErrors, ValueErrorsNameLineAndColumn) {
+  const std::string text =
+      "{\n"
+      "  \"spacing\": 0.1,\n"
+      "  \"solver\": {\n"
+      "    \"type\": \"iisph\",\n"
+      "    \"boundary_pressure\": \"mirror\",\n"
+      "    \"tolerance\": -1\n"
+      "  },\n"
+      "  \"time\": {\"fps\": 30, \"fsp\": 30},\n"
+      "  \"fluid\": [\n"
+      "    {\"shape\": \"rectangle\", \"min\": [0, \"a\"], \"max\": [1, 1]}\n"
+      "  ]\n"
+      "}\n";
+  const std::string mirror = "/solver/boundary_pressure: invalid value \"mirror\"; must be one of: solved, extrapolation, mirroring, zero";
+  EXPECT_EQ(error_of(text), "scenes/x.json:6:18: /solver/tolerance: value -1 is out of range; must be > 0 (percent)");
+  // A sibling set by an override leaves the value's position; numbers and strings are
+  // found at their first character.
+  EXPECT_EQ(error_of(text, {"solver.tolerance=1"}), "scenes/x.json:5:26: " + mirror);
+  EXPECT_EQ(error_of(text, {"solver.tolerance=1", "solver.boundary_pressure=zero"}),
+            "scenes/x.json:8:30: /time/fsp: unknown key; allowed keys: duration, fps, dt, cfl, dt_max, dt_min, settle");
+  EXPECT_EQ(error_of(text, {"solver.tolerance=1", "solver.boundary_pressure=zero", "time.fsp=null", "/time/fsp=1"}),
+            "scenes/x.json: /time/fsp: unknown key; allowed keys: duration, fps, dt, cfl, dt_max, dt_min, settle");
+  const std::vector<std::string> good_solver_time = {"solver.tolerance=1", "solver.boundary_pressure=zero", "time={}"};
+  EXPECT_EQ(error_of(text, good_solver_time), "scenes/x.json:10:35: /fluid/0/min: expected an array of 2 numbers, got [0,\"a\"]");
+  // The value itself from an override: the message as without a file position.
+  EXPECT_EQ(error_of(text, {"solver.tolerance=1", "solver.boundary_pressure=mirrors"}),
+            "scenes/x.json: /solver/boundary_pressure: invalid value \"mirrors\"; must be one of: solved, extrapolation, mirroring, zero");
+  // A value holding one an override changed is not the file's either.
+  std::vector<std::string> o = good_solver_time;
+  o.push_back("fluid.0.max.0=2");
+  EXPECT_EQ(error_of(text, o), "scenes/x.json:10:35: /fluid/0/min: expected an array of 2 numbers, got [0,\"a\"]");
+  o.push_back("fluid.0.min.1=-1");
+  o.push_back("fluid.0.max=[1,-2]");
+  EXPECT_EQ(error_of(text, o).rfind("scenes/x.json: /fluid/0/max: max [1, -2] is below min [0, -1]", 0), 0u) << error_of(text, o);
+  // A missing key has no position.
+  EXPECT_EQ(error_of("{\n  \"fluid\": []\n}"), "scenes/x.json: /spacing: missing required key; the fluid particle spacing in m, a number > 0");
+  // A container's position is its opening bracket; a string's its opening quote, escapes
+  // and all; a duplicate key's the second value.
+  EXPECT_EQ(error_of("{\"spacing\": 0.1,\n \"fluid\":\n   [ ]}"),
+            "scenes/x.json:3:4: /fluid: the scene has no fluid particles (0 lattice points: the fluid blocks are empty or have no area at this spacing)");
+  EXPECT_EQ(error_of(scene_with(R"("name": "a\"\\/b",)")).substr(0, 27), "scenes/x.json:1:10: /name: ");
+  EXPECT_EQ(error_of("{\"spacing\": 0.1,\n\"spacing\":  0.2, \"fluid\": []}"),
+            "scenes/x.json:2:13: /spacing: duplicate key; each key may appear only once");
 }
 
 // --- overrides --------------------------------------------------------------------------------

@@ -1,7 +1,8 @@
 #pragma once
 // A scene file (JSON) resolved into a SimulationSetup (settings, fluid particles on a
 // lattice, boundary samples with their objects) plus the program's own settings.
-// Reading and validation live in scene.cpp; sampling of shapes in core/shapes.cpp.
+// Reading and validation live in src/scene (build.cpp assembles a scene: json_reader,
+// overrides, the section readers); sampling of shapes in core/shapes.cpp.
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
