@@ -1,7 +1,7 @@
 #pragma once
 // Geometry of scene shapes: fluid blocks filled on a square lattice, boundary shapes
 // sampled in layers, and the removal of fluid particles that overlap a boundary.
-// No JSON here: scene.cpp validates the input and builds these plain structs.
+// No JSON here: the scene readers (src/scene) validate the input and build these plain structs.
 #include <vector>
 
 #include "core/types.h"
