@@ -45,8 +45,10 @@ void set_traps(bool on) {
 #pragma omp parallel
   {
     feclearexcept(FE_ALL_EXCEPT);
-    if (on) feenableexcept(kTraps);
-    else fedisableexcept(kTraps);
+    if (on)
+      feenableexcept(kTraps);
+    else
+      fedisableexcept(kTraps);
   }
 }
 

@@ -27,8 +27,8 @@ std::vector<std::string> split(const std::string& line, char sep) {
 TEST(RenderBenchEndToEnd, SplitsARenderIntoItsParts) {
   CaseDir dir;
   test::write_text(dir.work() / "tiny.json", kTinyScene);
-  const test::Result r = test::run_sluice(
-      dir, {"bench", "--end-to-end", "tiny.json", "--duration", "0.1", "--fps", "20", "--resolution", "64x64", "-o", "out"});
+  const test::Result r = test::run_sluice(dir, {"bench", "--end-to-end", "tiny.json", "--duration", "0.1", "--fps",
+                                                "20", "--resolution", "64x64", "-o", "out"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("simul_s"), std::string::npos) << r.out;
   const auto t = nlohmann::json::parse(test::read_text(dir.work() / "out" / "timing.json"));

@@ -197,18 +197,17 @@ Scene paddle() {
   return s;
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Checkpoint, Resume,
-    ::testing::Values(ResumeCase{"iisph", [] { return dam_break(); }, 3},
-                      ResumeCase{"wcsph_viscosity",
-                                 [] {
-                                   return dam_break({"solver.type=wcsph", "solver.stiffness=5e5",
-                                                     "solver.viscosity=0.01", "time.dt=2e-4", "time.duration=0.1",
-                                                     "time.fps=50"});
-                                 },
-                                 2},
-                      ResumeCase{"moving_paddle_adaptive", paddle, 3}),
-    [](const ::testing::TestParamInfo<ResumeCase>& param_info) { return param_info.param.name; });
+INSTANTIATE_TEST_SUITE_P(Checkpoint, Resume,
+                         ::testing::Values(ResumeCase{"iisph", [] { return dam_break(); }, 3},
+                                           ResumeCase{"wcsph_viscosity",
+                                                      [] {
+                                                        return dam_break({"solver.type=wcsph", "solver.stiffness=5e5",
+                                                                          "solver.viscosity=0.01", "time.dt=2e-4",
+                                                                          "time.duration=0.1", "time.fps=50"});
+                                                      },
+                                                      2},
+                                           ResumeCase{"moving_paddle_adaptive", paddle, 3}),
+                         [](const ::testing::TestParamInfo<ResumeCase>& param_info) { return param_info.param.name; });
 
 // --- refused checkpoints ----------------------------------------------------------------
 
@@ -249,8 +248,8 @@ TEST(Checkpoint, RefusedFilesNameTheFileAndTheProblem) {
 
   std::string version = good;
   version[8] = static_cast<char>(kCheckpointVersion + 1);  // u32 version, little-endian
-  expect_refusal(version, "has format version " + std::to_string(kCheckpointVersion + 1) + "; this sluice reads version " +
-                              std::to_string(kCheckpointVersion));
+  expect_refusal(version, "has format version " + std::to_string(kCheckpointVersion + 1) +
+                              "; this sluice reads version " + std::to_string(kCheckpointVersion));
 
   std::string magic = good;
   magic.replace(0, 8, "PNG\r\n\x1a\n\0", 8);
@@ -261,9 +260,9 @@ TEST(Checkpoint, RefusedFilesNameTheFileAndTheProblem) {
   for (const Scene& other : {dam_break({"solver.tolerance=0.05"}), dam_break({"spacing=0.025"})}) {
     const std::uint64_t h = scene_hash(other);
     ASSERT_NE(h, hash);
-    EXPECT_EQ(error_of([&] { read_checkpoint(file, h); }),
-              "checkpoint " + file.string() + " was written for a different scene (hash " + hex(hash) +
-                  ", this scene " + hex(h) + ")");
+    EXPECT_EQ(error_of([&] { read_checkpoint(file, h); }), "checkpoint " + file.string() +
+                                                               " was written for a different scene (hash " + hex(hash) +
+                                                               ", this scene " + hex(h) + ")");
   }
   EXPECT_EQ(scene_hash(dam_break()), hash) << "the same scene hashes the same";
 }

@@ -74,7 +74,8 @@ void expect_one_clear_line(const Result& r, int status, const std::vector<std::s
   EXPECT_EQ(r.err.rfind("sluice:", 0), 0u) << r.err;
   EXPECT_EQ(r.err.back(), '\n') << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "more than one line:\n" << r.err;
-  for (const std::string& f : fragments) EXPECT_NE(r.err.find(f), std::string::npos) << "missing '" << f << "' in: " << r.err;
+  for (const std::string& f : fragments)
+    EXPECT_NE(r.err.find(f), std::string::npos) << "missing '" << f << "' in: " << r.err;
   for (const char* crash : {"terminate", "Aborted", "Sanitizer", "runtime error", "Segmentation", "core dumped"})
     EXPECT_EQ(r.err.find(crash), std::string::npos) << r.err;
 }
@@ -85,8 +86,10 @@ std::string tiny(const std::string& extra = "",
                  const std::string& fluid = R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
                  const std::string& boundaries = R"([{"shape": "box", "min": [0, 0], "max": [0.5, 0.5]}])") {
   return "{" + extra + R"( "name": "tiny", "spacing": 0.05, "time": {"duration": 0.02, "fps": 50, "dt": 0.005},
-  "fluid": )" + fluid + R"(,
-  "boundaries": )" + boundaries + "}\n";
+  "fluid": )" +
+         fluid + R"(,
+  "boundaries": )" +
+         boundaries + "}\n";
 }
 
 struct Case {
@@ -103,175 +106,375 @@ std::vector<Case> cases() {
   const std::string previous_summary = R"({"status": "completed"})";
   return {
       // --- the scene file -----------------------------------------------------------------
-      {"malformed JSON", {{"bad.json", "{\"spacing\": 0.05,\n \"fluid\": [,]}"}}, {"simulate", "bad.json", "-q"}, 2,
+      {"malformed JSON",
+       {{"bad.json", "{\"spacing\": 0.05,\n \"fluid\": [,]}"}},
+       {"simulate", "bad.json", "-q"},
+       2,
        {"sluice: scene error: bad.json:2:12: JSON parse error", "unexpected ','"}},
-      {"truncated file", {{"cut.json", ok.substr(0, 60)}}, {"simulate", "cut.json", "-q"}, 2,
+      {"truncated file",
+       {{"cut.json", ok.substr(0, 60)}},
+       {"simulate", "cut.json", "-q"},
+       2,
        {"cut.json:1:61: JSON parse error", "unexpected end of input"}},
-      {"empty file", {{"empty.json", ""}}, {"simulate", "empty.json", "-q"}, 2,
+      {"empty file",
+       {{"empty.json", ""}},
+       {"simulate", "empty.json", "-q"},
+       2,
        {"empty.json:1:1: JSON parse error", "unexpected end of input"}},
-      {"non-object root", {{"root.json", "[1, 2]"}}, {"simulate", "root.json", "-q"}, 2,
+      {"non-object root",
+       {{"root.json", "[1, 2]"}},
+       {"simulate", "root.json", "-q"},
+       2,
        {"root.json: the scene must be a JSON object {...}, got [1,2]"}},
-      {"unknown key", {{"x.json", tiny(R"("solver": {"tolerence": 0.1},)")}}, {"simulate", "x.json", "-q"}, 2,
+      {"unknown key",
+       {{"x.json", tiny(R"("solver": {"tolerence": 0.1},)")}},
+       {"simulate", "x.json", "-q"},
+       2,
        {"x.json:1:26: /solver/tolerence: unknown key; allowed keys: type, rest_density", "tolerance"}},
-      {"wrong type", {{"x.json", tiny(R"("stability": {"bounds_margin": "far"},)")}}, {"simulate", "x.json", "-q"}, 2,
+      {"wrong type",
+       {{"x.json", tiny(R"("stability": {"bounds_margin": "far"},)")}},
+       {"simulate", "x.json", "-q"},
+       2,
        {"x.json:1:33: /stability/bounds_margin: expected a number, got \"far\""}},
-      {"out-of-range value", {{"x.json", tiny(R"("solver": {"omega": 1.5},)")}}, {"simulate", "x.json", "-q"}, 2,
+      {"out-of-range value",
+       {{"x.json", tiny(R"("solver": {"omega": 1.5},)")}},
+       {"simulate", "x.json", "-q"},
+       2,
        {"x.json:1:22: /solver/omega: value 1.5 is out of range; must be in (0, 1]"}},
-      {"negative dt", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "time.dt=-0.001"}, 2,
+      {"negative dt",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "time.dt=-0.001"},
+       2,
        {"x.json: /time/dt: value -0.001 is out of range; must be > 0 [s]"}},
-      {"unknown solver type", {{"x.json", tiny(R"("solver": {"type": "sph"},)")}}, {"simulate", "x.json", "-q"}, 2,
+      {"unknown solver type",
+       {{"x.json", tiny(R"("solver": {"type": "sph"},)")}},
+       {"simulate", "x.json", "-q"},
+       2,
        {"x.json:1:21: /solver/type: invalid value \"sph\"; must be one of: iisph, wcsph"}},
-      {"duplicate key", {{"x.json", tiny(R"("spacing": 0.1,)")}}, {"simulate", "x.json", "-q"}, 2,
+      {"duplicate key",
+       {{"x.json", tiny(R"("spacing": 0.1,)")}},
+       {"simulate", "x.json", "-q"},
+       2,
        {"x.json:1:45: /spacing: duplicate key"}},
       {"fluid entirely inside walls",
        {{"x.json", tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
                         R"([{"shape": "circle", "center": [0.15, 0.15], "radius": 1, "fluid_side": "outside"}])")}},
-       {"simulate", "x.json", "-q"}, 2,
+       {"simulate", "x.json", "-q"},
+       2,
        {"x.json:2:12: /fluid: the scene has no fluid particles (36 lattice points, all removed inside boundaries)"}},
-      {"zero fluid particles", {{"x.json", tiny("", "[]")}}, {"simulate", "x.json", "-q"}, 2,
+      {"zero fluid particles",
+       {{"x.json", tiny("", "[]")}},
+       {"simulate", "x.json", "-q"},
+       2,
        {"x.json:2:12: /fluid: the scene has no fluid particles (0 lattice points"}},
-      {"missing scene file", {}, {"simulate", "nope.json", "-q"}, 2,
+      {"missing scene file",
+       {},
+       {"simulate", "nope.json", "-q"},
+       2,
        {"sluice: scene error: nope.json: cannot open scene file: no such file"}},
-      {"directory as the scene", {{"scenes/keep", ""}}, {"simulate", "scenes", "-q"}, 2,
+      {"directory as the scene",
+       {{"scenes/keep", ""}},
+       {"simulate", "scenes", "-q"},
+       2,
        {"scenes: is a directory; expected a scene file (JSON)"}},
-      {"nesting too deep", {{"deep.json", std::string(100000, '[') + std::string(100000, ']')}},
-       {"simulate", "deep.json", "-q"}, 2, {"deep.json:1:101: /0/0/0/", "nested more than 100 levels deep"}},
+      {"nesting too deep",
+       {{"deep.json", std::string(100000, '[') + std::string(100000, ']')}},
+       {"simulate", "deep.json", "-q"},
+       2,
+       {"deep.json:1:101: /0/0/0/", "nested more than 100 levels deep"}},
 
       // --- overrides ----------------------------------------------------------------------
-      {"bad --set path", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "solver..tolerance=1"}, 2,
+      {"bad --set path",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "solver..tolerance=1"},
+       2,
        {"--set solver..tolerance=1: empty path component"}},
-      {"--set through a number", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "spacing.x=1"}, 2,
+      {"--set through a number",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "spacing.x=1"},
+       2,
        {"--set spacing.x=1: the path goes through /spacing, which is 0.05, not an object or array"}},
-      {"--set without =", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "spacing"}, 2,
+      {"--set without =",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "spacing"},
+       2,
        {"--set spacing: expected path=value"}},
-      {"--set unknown key", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "time.fsp=30"}, 2,
+      {"--set unknown key",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "time.fsp=30"},
+       2,
        {"x.json: /time/fsp: unknown key; allowed keys: duration, fps"}},
-      {"--set value not UTF-8", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "spacing=\xff"}, 2,
+      {"--set value not UTF-8",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "spacing=\xff"},
+       2,
        {"x.json: /spacing: expected a number, got \""}},
 
       // --- resource limits ----------------------------------------------------------------
-      {"too many fluid particles", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "spacing=1e-6"}, 2,
-       {"x.json:2:13: /fluid/0: the fluid would have more than 20000000 lattice points; increase /spacing (now 1e-06 m)"}},
-      {"too many boundary samples", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "boundaries.0.spacing=1e-9"}, 2,
+      {"too many fluid particles",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "spacing=1e-6"},
+       2,
+       {"x.json:2:13: /fluid/0: the fluid would have more than 20000000 lattice points; increase /spacing (now 1e-06 "
+        "m)"}},
+      {"too many boundary samples",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "boundaries.0.spacing=1e-9"},
+       2,
        {"x.json: /boundaries/0: would create about", "boundary samples; the limit is 20000000"}},
-      {"layers spreading out", {{"x.json", ok}},
-       {"simulate", "x.json", "-q", "--set", "boundaries.0.layers=1000", "--set", "boundaries.0.layer_spacing=100"}, 2,
-       {"x.json: /boundaries/0: would create about", "the limit is 20000000 (check spacing, layers and layer_spacing)"}},
-      {"too many frames", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "time.duration=1e6", "--set", "time.fps=1e3"}, 2,
+      {"layers spreading out",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "boundaries.0.layers=1000", "--set", "boundaries.0.layer_spacing=100"},
+       2,
+       {"x.json: /boundaries/0: would create about",
+        "the limit is 20000000 (check spacing, layers and layer_spacing)"}},
+      {"too many frames",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "time.duration=1e6", "--set", "time.fps=1e3"},
+       2,
        {"x.json: /time: duration 1000000 s at fps 1000 makes 1000000000 frames; the limit is 10000000"}},
-      {"huge resolution", {{"x.json", tiny(R"("render": {"resolution": [100000, 720]},)")}}, {"simulate", "x.json", "-q"}, 2,
+      {"huge resolution",
+       {{"x.json", tiny(R"("render": {"resolution": [100000, 720]},)")}},
+       {"simulate", "x.json", "-q"},
+       2,
        {"x.json:1:28: /render/resolution/0: value 100000 is out of range; must be an integer in [2, 16384]"}},
 
       // --- flags --------------------------------------------------------------------------
-      {"bad flag value", {{"x.json", ok}}, {"simulate", "x.json", "--threads", "abc"}, 1,
+      {"bad flag value",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "--threads", "abc"},
+       1,
        {"sluice: --threads: expected an integer >= 1 and <= 4096, got 'abc'", "sluice simulate --help"}},
-      {"too many threads", {{"x.json", ok}}, {"simulate", "x.json", "--threads", "1000000000"}, 1,
+      {"too many threads",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "--threads", "1000000000"},
+       1,
        {"--threads: expected an integer >= 1 and <= 4096, got '1000000000'"}},
-      {"negative duration", {{"x.json", ok}}, {"simulate", "x.json", "--duration=-1"}, 1,
+      {"negative duration",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "--duration=-1"},
+       1,
        {"--duration: expected a number > 0, got '-1'"}},
       {"unknown export format", {{"x.json", ok}}, {"simulate", "x.json", "--export", "pdf"}, 1, {"--export", "pdf"}},
       {"unknown flag", {{"x.json", ok}}, {"simulate", "x.json", "--frobnicate"}, 1, {"--frobnicate", "--help"}},
-      {"missing scene argument", {}, {"simulate"}, 1, {"SCENE (or --resume DIR) is required", "sluice simulate --help"}},
+      {"missing scene argument",
+       {},
+       {"simulate"},
+       1,
+       {"SCENE (or --resume DIR) is required", "sluice simulate --help"}},
       {"no subcommand", {}, {}, 1, {"A subcommand is required", "sluice --help"}},
-      {"bad --frames", {{"x.json", ok}}, {"render", "x.json", "--frames", "5:1", "-q"}, 1,
+      {"bad --frames",
+       {{"x.json", ok}},
+       {"render", "x.json", "--frames", "5:1", "-q"},
+       1,
        {"sluice: error: --frames 5:1: expected A:B, whole frame numbers with 0 <= A <= B"}},
-      {"odd resolution for video", {{"x.json", ok}}, {"render", "x.json", "--resolution", "101x100", "-q"}, 1,
+      {"odd resolution for video",
+       {{"x.json", ok}},
+       {"render", "x.json", "--resolution", "101x100", "-q"},
+       1,
        {"--resolution 101x100: H.264 (yuv420p) needs even width and height; or pass --no-video"}},
-      {"bad --resolution", {{"x.json", ok}}, {"render", "x.json", "--resolution", "99999x2", "-q"}, 1,
+      {"bad --resolution",
+       {{"x.json", ok}},
+       {"render", "x.json", "--resolution", "99999x2", "-q"},
+       1,
        {"--resolution 99999x2: expected WxH with 2 <= W, H <= 16384"}},
 
       // --- the output directory -------------------------------------------------------------
-      {"output directory under a file", {{"x.json", ok}, {"afile", "x"}}, {"simulate", "x.json", "-q", "-o", "afile/out"}, 3,
+      {"output directory under a file",
+       {{"x.json", ok}, {"afile", "x"}},
+       {"simulate", "x.json", "-q", "-o", "afile/out"},
+       3,
        {"sluice: output error: afile/out: cannot create directory: Not a directory"}},
-      {"output directory under /dev/null", {{"x.json", ok}}, {"simulate", "x.json", "-q", "-o", "/dev/null/x"}, 3,
+      {"output directory under /dev/null",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "-o", "/dev/null/x"},
+       3,
        {"sluice: output error: /dev/null/x: cannot create directory"}},
-      {"output directory is a file", {{"x.json", ok}, {"afile", "x"}}, {"simulate", "x.json", "-q", "-o", "afile"}, 3,
+      {"output directory is a file",
+       {{"x.json", ok}, {"afile", "x"}},
+       {"simulate", "x.json", "-q", "-o", "afile"},
+       3,
        {"afile: output directory exists and is not a directory"}},
       {"output directory holds a previous run",
-       {{"x.json", ok}, {"out/stats.csv", "step\n1\n"}, {"out/summary.json", previous_summary}, {"out/frames/frame_00000.png", "png"}},
-       {"simulate", "x.json", "-q", "-o", "out"}, 3,
-       {"sluice: output error: out: output directory holds a previous run (stats.csv, summary.json, frames/); pass --overwrite"}},
-      {"previous run, render", {{"x.json", ok}, {"out/summary.json", previous_summary}, {"out/stats.csv", "step\n"}},
-       {"render", "x.json", "-q", "-o", "out"}, 3, {"out: output directory holds a previous run (stats.csv, summary.json)", "--overwrite"}},
-      {"killed run's temporary stats", {{"x.json", ok}, {"renders/tiny/stats.csv.tmp", "step\n1\n"}}, {"simulate", "x.json", "-q"}, 3,
+       {{"x.json", ok},
+        {"out/stats.csv", "step\n1\n"},
+        {"out/summary.json", previous_summary},
+        {"out/frames/frame_00000.png", "png"}},
+       {"simulate", "x.json", "-q", "-o", "out"},
+       3,
+       {"sluice: output error: out: output directory holds a previous run (stats.csv, summary.json, frames/); pass "
+        "--overwrite"}},
+      {"previous run, render",
+       {{"x.json", ok}, {"out/summary.json", previous_summary}, {"out/stats.csv", "step\n"}},
+       {"render", "x.json", "-q", "-o", "out"},
+       3,
+       {"out: output directory holds a previous run (stats.csv, summary.json)", "--overwrite"}},
+      {"killed run's temporary stats",
+       {{"x.json", ok}, {"renders/tiny/stats.csv.tmp", "step\n1\n"}},
+       {"simulate", "x.json", "-q"},
+       3,
        {"renders/tiny: output directory holds a previous run (stats.csv.tmp)", "--overwrite"}},
 
       // --- issue 19: hostile testing ----------------------------------------------------------
       // 2: --overwrite must not delete the input
-      {"scene among the files --overwrite removes", {{"out/summary.json", ok}},
-       {"simulate", "out/summary.json", "-q", "-o", "out", "--overwrite"}, 3,
+      {"scene among the files --overwrite removes",
+       {{"out/summary.json", ok}},
+       {"simulate", "out/summary.json", "-q", "-o", "out", "--overwrite"},
+       3,
        {"sluice: output error: out/summary.json: --overwrite would delete the scene file out/summary.json"}},
-      {"compare --diff onto an input", {{"a.png", "x"}, {"b.png", "y"}}, {"compare", "a.png", "b.png", "--diff", "a.png"}, 2,
+      {"compare --diff onto an input",
+       {{"a.png", "x"}, {"b.png", "y"}},
+       {"compare", "a.png", "b.png", "--diff", "a.png"},
+       2,
        {"sluice: error: --diff a.png: it names the input image a.png"}},
       // 3: steps that never end
-      {"too many steps", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "time.dt=1e-9"}, 2,
-       {"x.json: /time/dt: dt 1e-09 s for 0.02 s (settle + duration) makes at least 20000000 steps; the limit is 10000000"}},
-      {"dt_min that does not advance the time", {{"x.json", ok}},
-       {"simulate", "x.json", "-q", "--set", "time.dt=null", "--set", "time.dt_min=1e-320"}, 2,
+      {"too many steps",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "time.dt=1e-9"},
+       2,
+       {"x.json: /time/dt: dt 1e-09 s for 0.02 s (settle + duration) makes at least 20000000 steps; the limit is "
+        "10000000"}},
+      {"dt_min that does not advance the time",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "time.dt=null", "--set", "time.dt_min=1e-320"},
+       2,
        {"x.json: /time/dt_min: value", "does not advance the time at t = 0.02 s in double precision; must be > "}},
-      {"dt_min = dt_max = 1e-320", {{"x.json", ok}},
-       {"simulate", "x.json", "-q", "--set", "time.dt=null", "--set", "time.dt_min=1e-320", "--set", "time.dt_max=1e-320"}, 2,
+      {"dt_min = dt_max = 1e-320",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "time.dt=null", "--set", "time.dt_min=1e-320", "--set",
+        "time.dt_max=1e-320"},
+       2,
        {"x.json: /time/dt_max: dt_max", "makes at least inf steps; the limit is 10000000"}},
       // 4: --frames past the end
-      {"--frames past the end", {{"x.json", ok}}, {"render", "x.json", "-q", "--frames", "5:10"}, 1,
-       {"sluice: error: --frames 5:10: the scene's last frame is 1 (time.duration 0.02 s at 50 frames/s); allowed: 0 <= A <= B <= 1"}},
-      {"--frames beyond 32 bits", {{"x.json", ok}}, {"render", "x.json", "-q", "--frames", "0:2147483648"}, 1,
+      {"--frames past the end",
+       {{"x.json", ok}},
+       {"render", "x.json", "-q", "--frames", "5:10"},
+       1,
+       {"sluice: error: --frames 5:10: the scene's last frame is 1 (time.duration 0.02 s at 50 frames/s); allowed: 0 "
+        "<= A <= B <= 1"}},
+      {"--frames beyond 32 bits",
+       {{"x.json", ok}},
+       {"render", "x.json", "-q", "--frames", "0:2147483648"},
+       1,
        {"--frames 0:2147483648: the scene's last frame is 1"}},
       // 5: a name that leaves renders/
-      {"name with ../", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--set", "name=../../etc/x"}, 2,
+      {"name with ../",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", "name=../../etc/x"},
+       2,
        {"x.json: /name: invalid value \"../../etc/x\"; a name must not contain '/'"}},
       // 6: colour ranges that are not numbers
-      {"--range -inf:inf", {{"x.json", ok}}, {"render", "x.json", "-q", "--range=-inf:inf"}, 1,
+      {"--range -inf:inf",
+       {{"x.json", ok}},
+       {"render", "x.json", "-q", "--range=-inf:inf"},
+       1,
        {"--range -inf:inf: expected lo:hi, finite numbers with lo < hi and hi - lo finite"}},
-      {"--range nan:1", {{"x.json", ok}}, {"render", "x.json", "-q", "--range=nan:1"}, 1, {"--range nan:1: expected lo:hi"}},
-      {"render.range +-1e308", {{"x.json", tiny(R"("render": {"range": [-1e308, 1e308]},)")}}, {"render", "x.json", "-q"}, 2,
+      {"--range nan:1",
+       {{"x.json", ok}},
+       {"render", "x.json", "-q", "--range=nan:1"},
+       1,
+       {"--range nan:1: expected lo:hi"}},
+      {"render.range +-1e308",
+       {{"x.json", tiny(R"("render": {"range": [-1e308, 1e308]},)")}},
+       {"render", "x.json", "-q"},
+       2,
        {"x.json:1:22: /render/range: range [-1e+308,1e+308] must be [lo, hi] with lo < hi and hi - lo finite"}},
       // 7: --max-fraction nan
-      {"compare --max-fraction nan", {{"a.png", "x"}}, {"compare", "a.png", "a.png", "--max-fraction", "nan"}, 2,
+      {"compare --max-fraction nan",
+       {{"a.png", "x"}},
+       {"compare", "a.png", "a.png", "--max-fraction", "nan"},
+       2,
        {"sluice: --max-fraction: expected a number >= 0 and <= 1, got 'nan'"}},
       // 8: a polygon without area
-      {"zero-area fluid polygon", {{"x.json", tiny("", R"([{"shape": "polygon", "points": [[0, 0], [0.3, 0.3], [0.15, 0.15]]}])")}},
-       {"simulate", "x.json", "-q"}, 2,
-       {"x.json:2:12: /fluid: the scene has no fluid particles (0 lattice points: the fluid blocks are empty or have no area"}},
+      {"zero-area fluid polygon",
+       {{"x.json", tiny("", R"([{"shape": "polygon", "points": [[0, 0], [0.3, 0.3], [0.15, 0.15]]}])")}},
+       {"simulate", "x.json", "-q"},
+       2,
+       {"x.json:2:12: /fluid: the scene has no fluid particles (0 lattice points: the fluid blocks are empty or have "
+        "no area"}},
       // 12: a polyline running back over itself
       {"self-overlapping polyline",
        {{"x.json", tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
                         R"([{"shape": "box", "min": [0, 0], "max": [0.5, 0.5]},
                             {"shape": "polyline", "points": [[0, -0.2], [1, -0.2], [0.5, -0.2]]}])")}},
-       {"simulate", "x.json", "-q"}, 2,
-       {"x.json:4:61: /boundaries/1/points: segment 0 crosses or runs along another segment; the polyline must not intersect or overlap itself"}},
+       {"simulate", "x.json", "-q"},
+       2,
+       {"x.json:4:61: /boundaries/1/points: segment 0 crosses or runs along another segment; the polyline must not "
+        "intersect or overlap itself"}},
       // 13: compare's inputs have their own exit status (3, an I/O error: docs/cli.md)
-      {"compare: missing image", {{"a.png", "x"}}, {"compare", "nope.png", "a.png"}, 3,
+      {"compare: missing image",
+       {{"a.png", "x"}},
+       {"compare", "nope.png", "a.png"},
+       3,
        {"sluice: input image error: nope.png: cannot open PNG: No such file or directory"}},
-      {"compare: not a PNG", {{"a.png", "not a png"}}, {"compare", "a.png", "a.png"}, 3,
+      {"compare: not a PNG",
+       {{"a.png", "not a png"}},
+       {"compare", "a.png", "a.png"},
+       3,
        {"sluice: input image error: a.png: cannot read PNG: "}},
-      {"compare: truncated PNG", {{"a.png", std::string("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR", 16)}}, {"compare", "a.png", "a.png"}, 3,
+      {"compare: truncated PNG",
+       {{"a.png", std::string("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR", 16)}},
+       {"compare", "a.png", "a.png"},
+       3,
        {"sluice: input image error: a.png: cannot read PNG: "}},
       // 14: a duration too short for a step
-      {"tiny duration", {{"x.json", ok}}, {"simulate", "x.json", "-q", "--duration", "1e-300"}, 2,
+      {"tiny duration",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--duration", "1e-300"},
+       2,
        {"x.json: /time/duration: value 1e-300 is out of range; must be >= 1e-06 [s]"}},
-      {"tiny still time", {{"x.json", ok}}, {"still", "x.json", "--time", "1e-300"}, 1,
+      {"tiny still time",
+       {{"x.json", ok}},
+       {"still", "x.json", "--time", "1e-300"},
+       1,
        {"sluice: error: --time 1e-300: allowed: 0, or 1e-06 s to time.duration"}},
       // 16, 17: still and montage check their sizes and times before running
-      {"still --time 1e308", {{"x.json", ok}}, {"still", "x.json", "--time", "1e308"}, 1,
+      {"still --time 1e308",
+       {{"x.json", ok}},
+       {"still", "x.json", "--time", "1e308"},
+       1,
        {"sluice: error: --time 1e+308: the time is after the scene's end; allowed: 0 to time.duration = 0.02 s"}},
-      {"still --time after the end", {{"x.json", ok}}, {"still", "x.json", "--time", "0.05"}, 1,
+      {"still --time after the end",
+       {{"x.json", ok}},
+       {"still", "x.json", "--time", "0.05"},
+       1,
        {"--time 0.05: the time is after the scene's end"}},
-      {"montage of 16384x16384 cells", {{"x.json", ok}}, {"montage", "x.json", "--times", "0", "--cell", "16384x16384"}, 1,
+      {"montage of 16384x16384 cells",
+       {{"x.json", ok}},
+       {"montage", "x.json", "--times", "0", "--cell", "16384x16384"},
+       1,
        {"sluice: error: --cell 16384x16384: the montage would be ", "the limit is 16384 on each side"}},
-      {"montage --times in hexadecimal", {{"x.json", ok}}, {"montage", "x.json", "--times", "0x1"}, 1,
+      {"montage --times in hexadecimal",
+       {{"x.json", ok}},
+       {"montage", "x.json", "--times", "0x1"},
+       1,
        {"sluice: error: --times 0x1: expected simulated times"}},
       // 17: smaller cases
-      {"non-object root with --duration", {{"root.json", "[]"}}, {"simulate", "root.json", "-q", "--duration", "0.01"}, 2,
+      {"non-object root with --duration",
+       {{"root.json", "[]"}},
+       {"simulate", "root.json", "-q", "--duration", "0.01"},
+       2,
        {"sluice: scene error: root.json: the scene must be a JSON object {...}, got []"}},
-      {"number overflow", {{"x.json", "{\"spacing\": 0.05,\n \"time\": {\"duration\": 1e999}}"}}, {"simulate", "x.json", "-q"}, 2,
+      {"number overflow",
+       {{"x.json", "{\"spacing\": 0.05,\n \"time\": {\"duration\": 1e999}}"}},
+       {"simulate", "x.json", "-q"},
+       2,
        {"sluice: scene error: x.json:2:23: JSON parse error: number overflow parsing '1e999'"}},
-      {"points file /dev/null", {{"x.json", tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
-                                                  R"([{"shape": "points", "file": "/dev/null"}])")}},
-       {"simulate", "x.json", "-q"}, 2, {"x.json:3:46: /boundaries/0/file: \"/dev/null\" is not a regular file"}},
-      {"bytes after a NUL", {{"x.json", ok + std::string(1, '\0') + "garbage"}}, {"simulate", "x.json", "-q"}, 2,
+      {"points file /dev/null",
+       {{"x.json", tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
+                        R"([{"shape": "points", "file": "/dev/null"}])")}},
+       {"simulate", "x.json", "-q"},
+       2,
+       {"x.json:3:46: /boundaries/0/file: \"/dev/null\" is not a regular file"}},
+      {"bytes after a NUL",
+       {{"x.json", ok + std::string(1, '\0') + "garbage"}},
+       {"simulate", "x.json", "-q"},
+       2,
        {"sluice: scene error: x.json:", ": a NUL byte; a scene file is JSON text"}},
-      {"still -o a folder", {{"x.json", ok}, {"dir/keep", ""}}, {"still", "x.json", "--time", "0", "-o", "dir"}, 3,
+      {"still -o a folder",
+       {{"x.json", ok}, {"dir/keep", ""}},
+       {"still", "x.json", "--time", "0", "-o", "dir"},
+       3,
        {"sluice: output error: dir: is a directory; -o takes the PNG file to write"}},
   };
 }
@@ -310,12 +513,14 @@ TEST(CliErrors, UnstableRunKeepsStatsAndSummary) {
   // The fluid shoots out of the open box at 20 m/s and leaves the scene's bounds
   // within a few steps, after frame 1.
   write_text(dir.work() / "x.json", tiny(R"("stability": {"bounds_margin": 0.05},)"));
-  const Result r = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--set", "fluid.0.velocity=[0, 20]", "--set",
-                                    "time.duration=0.1", "--set", "time.fps=100"});
-  expect_one_clear_line(r, 4, {"sluice: unstable at step ", "stats.csv, summary.json and the output up to frame 1 are kept in out"});
+  const Result r = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--set", "fluid.0.velocity=[0, 20]",
+                                    "--set", "time.duration=0.1", "--set", "time.fps=100"});
+  expect_one_clear_line(
+      r, 4, {"sluice: unstable at step ", "stats.csv, summary.json and the output up to frame 1 are kept in out"});
   expect_no_partial_files(dir.work());
   ASSERT_TRUE(fs::exists(dir.work() / "out/stats.csv"));
-  EXPECT_NE(read_text(dir.work() / "out/stats.csv").find("\n1,"), std::string::npos) << "the step before the stop is kept";
+  EXPECT_NE(read_text(dir.work() / "out/stats.csv").find("\n1,"), std::string::npos)
+      << "the step before the stop is kept";
   const auto summary = nlohmann::json::parse(read_text(dir.work() / "out/summary.json"));
   EXPECT_EQ(summary["status"], "unstable");
 }
@@ -361,14 +566,15 @@ TEST(CliErrors, OverwriteReplacesPreviousRun) {
 TEST(CliErrors, OverwriteRemovesOtherVideosAndPatterns) {
   CaseDir dir;
   write_text(dir.work() / "x.json", tiny());
-  for (const char* f : {"out/summary.json", "out/tiny.webm", "out/tiny.gif", "out/tiny.webm.tmp.webm",
-                        "out/tiny.gif.tmp.gif", "out/frames/shot-000.png", "out/frames/shot-001.png.tmp",
-                        "out/frames/frame_00003.png"})
+  for (const char* f :
+       {"out/summary.json", "out/tiny.webm", "out/tiny.gif", "out/tiny.webm.tmp.webm", "out/tiny.gif.tmp.gif",
+        "out/frames/shot-000.png", "out/frames/shot-001.png.tmp", "out/frames/frame_00003.png"})
     write_text(dir.work() / f, "old");
   write_text(dir.work() / "out/frames/legend.png", "mine: no frame number");
   write_text(dir.work() / "out/tiny.webm.txt", "mine");
   const Result refused = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out"});
-  expect_one_clear_line(refused, 3, {"(summary.json, frames/, tiny.webm, tiny.webm.tmp.webm, tiny.gif, tiny.gif.tmp.gif)"});
+  expect_one_clear_line(refused, 3,
+                        {"(summary.json, frames/, tiny.webm, tiny.webm.tmp.webm, tiny.gif, tiny.gif.tmp.gif)"});
   const Result r = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--overwrite"});
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* f : {"out/tiny.webm", "out/tiny.gif", "out/tiny.webm.tmp.webm", "out/tiny.gif.tmp.gif",
@@ -387,8 +593,9 @@ TEST(RenderCli, FfmpegAbsentKeepsFrames) {
   const Result r = run_sluice(dir, {"render", "x.json", "-q", "-o", "out", "--resolution", "64x64"},
                               (dir.base() / "empty_bin").string());
   if (r.status == 6) GTEST_SKIP() << "no headless EGL here: " << r.err;
-  expect_one_clear_line(r, 5, {"sluice: video error: cannot start ffmpeg (No such file or directory; install it",
-                               "the frames are kept in out/frames"});
+  expect_one_clear_line(r, 5,
+                        {"sluice: video error: cannot start ffmpeg (No such file or directory; install it",
+                         "the frames are kept in out/frames"});
   EXPECT_TRUE(fs::exists(dir.work() / "out/frames/frame_00000.png"));
   EXPECT_TRUE(fs::exists(dir.work() / "out/frames/frame_00001.png"));
   EXPECT_FALSE(fs::exists(dir.work() / "out/tiny.mp4"));
@@ -413,10 +620,13 @@ TEST(SceneLimits, BoundariesTogetherStayUnderTheSampleLimit) {
   // four of them do not fit.
   std::string walls = "[";
   for (int i = 0; i < 4; ++i)
-    walls += std::string(i ? ", " : "") + R"({"shape": "circle", "center": [5, 5], "radius": 1, "spacing": 1e-6, "layers": 1})";
+    walls += std::string(i ? ", " : "") +
+             R"({"shape": "circle", "center": [5, 5], "radius": 1, "spacing": 1e-6, "layers": 1})";
   walls += "]";
   const std::string e = parse_error(tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])", walls));
-  EXPECT_NE(e.find("x.json:3:264: /boundaries/3: the boundaries up to this one would create about 24504423 samples"), std::string::npos) << e;
+  EXPECT_NE(e.find("x.json:3:264: /boundaries/3: the boundaries up to this one would create about 24504423 samples"),
+            std::string::npos)
+      << e;
   EXPECT_NE(e.find("the limit is 20000000 of each"), std::string::npos) << e;
 }
 
@@ -430,9 +640,11 @@ TEST(SceneLimits, CoordinatesNearTheRangeOfDouble) {
 
 TEST(SceneLimits, LongCurveAtASmallFluidSpacing) {
   // Few samples (spacing 1000 m) but a curve of 10^8 fluid spacings to clear the fluid along.
-  const std::string e = parse_error(tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
-                                         R"([{"shape": "polyline", "points": [[0, -1], [5e6, -1]], "spacing": 1000}])"));
-  EXPECT_NE(e.find("x.json:3:18: /boundaries/0: the curve would be cut into about 100000000 pieces"), std::string::npos) << e;
+  const std::string e =
+      parse_error(tiny("", R"([{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}])",
+                       R"([{"shape": "polyline", "points": [[0, -1], [5e6, -1]], "spacing": 1000}])"));
+  EXPECT_NE(e.find("x.json:3:18: /boundaries/0: the curve would be cut into about 100000000 pieces"), std::string::npos)
+      << e;
 }
 
 }  // namespace
@@ -464,8 +676,9 @@ TEST(Reliability, MemoryEstimateRefusesBeforeAllocating) {
   test::Limits limits;
   limits.address_space = 256ull << 20;
   const Result r = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--set", "spacing=0.0005"}, "", limits);
-  expect_one_clear_line(r, 2, {"sluice: scene error: x.json: /spacing: 360000 fluid particles and ",
-                               " of memory; the limit is 256 MiB (RLIMIT_AS (ulimit -v)); increase /spacing"});
+  expect_one_clear_line(r, 2,
+                        {"sluice: scene error: x.json: /spacing: 360000 fluid particles and ",
+                         " of memory; the limit is 256 MiB (RLIMIT_AS (ulimit -v)); increase /spacing"});
   EXPECT_FALSE(fs::exists(dir.work() / "out/stats.csv"));
 }
 
@@ -510,8 +723,9 @@ TEST(RenderReliability, RenderOnAFullDiskKeepsTheRecord) {
   test::Limits limits;
   limits.file_size = 16384;
   if (const std::string why = no_egl(dir); !why.empty()) GTEST_SKIP() << "no headless EGL here: " << why;
-  const Result r = run_sluice(dir, {"render", "x.json", "-q", "-o", "out", "--no-video", "--resolution", "64x64", "--set",
-                                    "time.duration=1"}, "", limits);
+  const Result r = run_sluice(
+      dir, {"render", "x.json", "-q", "-o", "out", "--no-video", "--resolution", "64x64", "--set", "time.duration=1"},
+      "", limits);
   expect_failed_run_kept(dir, r, "out/stats.csv");
   const auto summary = nlohmann::json::parse(read_text(dir.work() / "out/summary.json"));
   EXPECT_EQ(summary["frames_written"], count_pngs(dir.work() / "out/frames"));
@@ -553,7 +767,8 @@ TEST(RenderReliability, StillMontageAndDiffOnAFullDiskExit3) {
   // montage says what it runs first; the error is its last line
   const Result montage = run_sluice(dir, {"montage", "x.json", "--times", "0,0.02", "-o", "m.png"}, "", limits);
   EXPECT_EQ(montage.status, 3) << montage.err;
-  EXPECT_NE(montage.err.find("\nsluice: output error: m.png: write failed: File too large\n"), std::string::npos) << montage.err;
+  EXPECT_NE(montage.err.find("\nsluice: output error: m.png: write failed: File too large\n"), std::string::npos)
+      << montage.err;
   expect_no_partial_files(dir.work());
 }
 
@@ -561,8 +776,8 @@ TEST(RenderReliability, StillMontageAndDiffOnAFullDiskExit3) {
 
 // A render long enough to be interrupted: 5000 steps, 250 small frames.
 std::vector<std::string> long_render(const std::vector<std::string>& extra = {}) {
-  std::vector<std::string> args = {"render", "x.json", "-q", "-o", "out", "--resolution", "64x64", "--set",
-                                   "time.duration=5", "--set", "time.dt=0.001"};
+  std::vector<std::string> args = {"render", "x.json",          "-q",    "-o",           "out", "--resolution", "64x64",
+                                   "--set",  "time.duration=5", "--set", "time.dt=0.001"};
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
 }
@@ -591,9 +806,10 @@ TEST(RenderReliability, SignalsStopARenderAndKeepItsRecord) {
     }
     kill(pid, signal);
     const Result r = test::wait_sluice(dir, pid);
-    expect_one_clear_line(r, 128 + signal, {std::string("sluice: interrupted by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
-                                                " at step ",
-                                            "are kept in out; resume with: sluice render --resume out"});
+    expect_one_clear_line(
+        r, 128 + signal,
+        {std::string("sluice: interrupted by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") + " at step ",
+         "are kept in out; resume with: sluice render --resume out"});
     expect_no_partial_files(dir.work());
     const auto summary = nlohmann::json::parse(read_text(dir.work() / "out/summary.json"));
     EXPECT_EQ(summary["status"], "interrupted");
@@ -621,7 +837,8 @@ TEST(RenderReliability, SigtermWhileEncodingStopsFfmpeg) {
     write_text(dir.work() / "x.json", tiny());
     // A stand-in ffmpeg that starts its output file and then takes its time.
     const fs::path bin = dir.base() / "bin";
-    write_text(bin / "ffmpeg", "#!/bin/sh\necho $$ > ffmpeg.pid\nfor a; do last=$a; done\n: > \"$last\"\nexec /bin/sleep 60\n");
+    write_text(bin / "ffmpeg",
+               "#!/bin/sh\necho $$ > ffmpeg.pid\nfor a; do last=$a; done\n: > \"$last\"\nexec /bin/sleep 60\n");
     fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
     if (const std::string why = no_egl(dir); !why.empty()) GTEST_SKIP() << "no headless EGL here: " << why;
     const pid_t pid = test::start_sluice(
@@ -642,8 +859,9 @@ TEST(RenderReliability, SigtermWhileEncodingStopsFfmpeg) {
     if (orphan) kill(ffmpeg, SIGKILL);
     EXPECT_FALSE(orphan) << "ffmpeg still runs";
     fs::remove(dir.work() / "ffmpeg.pid");
-    expect_one_clear_line(r, 143, {"sluice: interrupted by SIGTERM while ffmpeg encoded out/tiny." + format,
-                                   "make the video with: ffmpeg "});
+    expect_one_clear_line(
+        r, 143,
+        {"sluice: interrupted by SIGTERM while ffmpeg encoded out/tiny." + format, "make the video with: ffmpeg "});
     EXPECT_FALSE(fs::exists(partial));
     EXPECT_FALSE(fs::exists(dir.work() / ("out/tiny." + format)));
     expect_no_partial_files(dir.work());

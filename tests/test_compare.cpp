@@ -63,12 +63,13 @@ TEST(CompareCli, ReportsCountFractionLargestDifferenceAndBox) {
   write_pair(dir);
   const Result r = compare(dir, {"--diff", "d.png"});
   EXPECT_EQ(r.status, 1) << r.err;
-  expect_contains(r.out, "a.png vs b.png: 9 of 5000 pixels (0.1800%) differ by more than 0 levels; allowed 0.0000%: DIFFER");
+  expect_contains(r.out,
+                  "a.png vs b.png: 9 of 5000 pixels (0.1800%) differ by more than 0 levels; allowed 0.0000%: DIFFER");
   expect_contains(r.out, "largest difference: 100 levels at x = 70, y = 40");
   expect_contains(r.out, "differing pixels: bounding box x = 10, y = 20, w = 61, h = 21");
   expect_contains(r.out, "diff image: d.png");
   const Image d = render::read_png((dir.work() / "d.png").string());
-  EXPECT_EQ(d.at(70, 40)[0], 255);  // differing: red
+  EXPECT_EQ(d.at(70, 40)[0], 255);          // differing: red
   EXPECT_EQ(d.at(0, 0)[0], d.at(0, 0)[2]);  // the same: grey
 }
 
@@ -110,7 +111,7 @@ TEST(CompareCli, RegionsAreIgnored) {
 TEST(CompareCli, MaskIgnoresItsNonBlackPixels) {
   CaseDir dir;
   write_pair(dir);
-  Image mask(kW, kH);  // black: compared
+  Image mask(kW, kH);      // black: compared
   mask.at(70, 40)[1] = 1;  // any non-black pixel is ignored, however dark
   for (int y = 20; y < 22; ++y)
     for (int x = 10; x < 14; ++x) mask.at(x, y)[0] = mask.at(x, y)[1] = mask.at(x, y)[2] = 255;
@@ -143,8 +144,9 @@ TEST(CompareCli, UsageErrorsExit2NamingTheFlagAndValue) {
       {{"--region", "1,2,3"}, {"--region 1,2,3: expected x,y,w,h"}},
       {{"--region", "-1,0,3,3"}, {"--region -1,0,3,3: expected x,y,w,h", "x, y >= 0"}},
       {{"--region", "0,0,0,3"}, {"--region 0,0,0,3", "w, h >= 1"}},
-      {{"--region", "90,0,20,10"}, {"--region 90,0,20,10: the rectangle ends at x = 110", "outside the images (100x50)",
-                                    "x + w <= 100 and y + h <= 50"}},
+      {{"--region", "90,0,20,10"},
+       {"--region 90,0,20,10: the rectangle ends at x = 110", "outside the images (100x50)",
+        "x + w <= 100 and y + h <= 50"}},
       {{"--mask", "small.png"}, {"--mask small.png: the mask is 10x10; it must have the images' size, 100x50"}},
       {{"--diff", "b.png"}, {"--diff b.png: it names the input image b.png"}},
       {{"--no-such-flag"}, {"--no-such-flag", "sluice compare --help"}},

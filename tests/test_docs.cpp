@@ -115,7 +115,8 @@ std::set<std::string> choices_in(const std::string& help_line) {
 
 bool is_placeholder(const std::string& v) {
   return v.find_first_of("[]|.") != std::string::npos || std::all_of(v.begin(), v.end(), [](char ch) {
-           return std::isupper(static_cast<unsigned char>(ch)) || ch == '_' || std::isdigit(static_cast<unsigned char>(ch));
+           return std::isupper(static_cast<unsigned char>(ch)) || ch == '_' ||
+                  std::isdigit(static_cast<unsigned char>(ch));
          });
 }
 
@@ -151,7 +152,8 @@ std::vector<std::string> problems_of(const Command& c, const std::set<std::strin
     const bool list = line.find("} ...") != std::string::npos;
     std::istringstream parts(v);
     for (std::string part; std::getline(parts, part, list ? ',' : '\0');)
-      if (!choices.count(part)) bad.push_back("value " + v + " of " + flag + " is not one of its choices in: " + c.text);
+      if (!choices.count(part))
+        bad.push_back("value " + v + " of " + flag + " is not one of its choices in: " + c.text);
   }
   return bad;
 }

@@ -64,10 +64,11 @@ const std::string kScene = std::string(SLUICE_SOURCE_DIR) + "/scenes/validation/
 
 void check_drop(const analysis::EllipticalDropResult& r, const char* solver) {
   const auto& e = r.series.back();
-  std::printf("[ measured ] elliptical drop %s: h = %g, %ld particles, %ld steps, t = %.3f: a %.5f (ode %.5f, %.3f %%), "
-              "b %.5f (ode %.5f, %.3f %%), %.1f s\n",
-              solver, r.h, r.particles, r.steps, e.t, e.a_sim, e.a_ode, 100 * r.a_error, e.b_sim, e.b_ode,
-              100 * r.b_error, r.wall_seconds);
+  std::printf(
+      "[ measured ] elliptical drop %s: h = %g, %ld particles, %ld steps, t = %.3f: a %.5f (ode %.5f, %.3f %%), "
+      "b %.5f (ode %.5f, %.3f %%), %.1f s\n",
+      solver, r.h, r.particles, r.steps, e.t, e.a_sim, e.a_ode, 100 * r.a_error, e.b_sim, e.b_ode, 100 * r.b_error,
+      r.wall_seconds);
   ASSERT_GE(r.series.size(), 2u);
   EXPECT_EQ(r.series.front().t, 0.0);
   EXPECT_NEAR(r.series.front().a_sim, r.R0, 1e-12);

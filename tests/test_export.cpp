@@ -67,8 +67,10 @@ std::unique_ptr<Element> parse_xml(const std::string& text, std::string& error) 
         e->name = name;
         for (int k = 0; attrs[k]; k += 2) e->attributes[attrs[k]] = attrs[k + 1];
         Element* raw = e.get();
-        if (s->open.empty()) s->root = std::move(e);
-        else s->open.back()->children.push_back(std::move(e));
+        if (s->open.empty())
+          s->root = std::move(e);
+        else
+          s->open.back()->children.push_back(std::move(e));
         s->open.push_back(raw);
       },
       [](void* data, const XML_Char*) { static_cast<State*>(data)->open.pop_back(); });
@@ -194,7 +196,8 @@ void expect_exports(const fs::path& particles, const Scene& scene, int frames) {
     EXPECT_EQ(fluid.time, t);
     EXPECT_EQ(fluid.xyz.size(), static_cast<size_t>(3 * nf));
     EXPECT_EQ(fluid.arrays["velocity"].size(), static_cast<size_t>(3 * nf));
-    for (const char* name : {"pressure", "density", "id"}) EXPECT_EQ(fluid.arrays[name].size(), static_cast<size_t>(nf)) << name;
+    for (const char* name : {"pressure", "density", "id"})
+      EXPECT_EQ(fluid.arrays[name].size(), static_cast<size_t>(nf)) << name;
     EXPECT_EQ(fluid.types["id"], "Int32");
     for (long i = 0; i < nf; ++i) EXPECT_EQ(fluid.arrays["id"][i], i) << "fluid in the scene's initial order";
 
@@ -202,7 +205,8 @@ void expect_exports(const fs::path& particles, const Scene& scene, int frames) {
     const long nb = static_cast<long>(scene.boundary_x.size());
     EXPECT_EQ(wall.points, nb);
     EXPECT_EQ(wall.arrays["velocity"].size(), static_cast<size_t>(3 * nb));
-    for (const char* name : {"object_id", "pressure", "volume"}) EXPECT_EQ(wall.arrays[name].size(), static_cast<size_t>(nb)) << name;
+    for (const char* name : {"object_id", "pressure", "volume"})
+      EXPECT_EQ(wall.arrays[name].size(), static_cast<size_t>(nb)) << name;
     EXPECT_EQ(wall.types["object_id"], "Int32");
     // Each object's samples carry its index; only the paddle's move (after t = 0).
     std::vector<long> per_object(scene.objects.size(), 0);
@@ -217,7 +221,8 @@ void expect_exports(const fs::path& particles, const Scene& scene, int frames) {
         EXPECT_GT(speed, 0.0) << "sample " << i << " of the paddle";
       }
     }
-    for (size_t o = 0; o < scene.objects.size(); ++o) EXPECT_EQ(per_object[o], scene.objects[o].count) << scene.objects[o].name;
+    for (size_t o = 0; o < scene.objects.size(); ++o)
+      EXPECT_EQ(per_object[o], scene.objects[o].count) << scene.objects[o].name;
   }
 }
 
@@ -233,15 +238,16 @@ TEST(Exports, SimulateWritesVtpFilesAndTheCollection) {
   for (int k = 0; k < kFrames; ++k)
     EXPECT_TRUE(fs::exists(dir.work() / ("out/particles/frame_0000" + std::to_string(k) + ".csv")));
   const auto summary = nlohmann::json::parse(read_text(dir.work() / "out/summary.json"));
-  EXPECT_EQ(summary["parameters"]["output"]["export"], nlohmann::json({"csv", "vtk"})) << "--export replaces output.export";
+  EXPECT_EQ(summary["parameters"]["output"]["export"], nlohmann::json({"csv", "vtk"}))
+      << "--export replaces output.export";
 }
 
 // An unstable run keeps a collection that lists exactly the frames whose files exist.
 TEST(Exports, CollectionIsValidAfterAnUnstableRun) {
   CaseDir dir;
   write_text(dir.work() / "x.json", kScene);
-  const Result r = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--set", "fluid.0.velocity=[0, 40]", "--set",
-                                    "stability.bounds_margin=0.05", "--set", "time.duration=1"});
+  const Result r = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--set", "fluid.0.velocity=[0, 40]",
+                                    "--set", "stability.bounds_margin=0.05", "--set", "time.duration=1"});
   ASSERT_EQ(r.status, 4) << r.err;
   const std::vector<DataSet> sets = read_pvd(dir.work() / "out/particles/particles.pvd");
   ASSERT_GE(sets.size(), 2u);
@@ -258,10 +264,12 @@ TEST(Exports, OverwriteRemovesOldExports) {
   ASSERT_EQ(run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--export", "csv,vtk"}).status, 0);
   write_text(dir.work() / "out/particles/frame_00009.vtk", "an older version's legacy file");
   write_text(dir.work() / "out/particles/notes.txt", "mine");
-  const Result r = run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--overwrite", "--set", "output.export=[]"});
+  const Result r =
+      run_sluice(dir, {"simulate", "x.json", "-q", "-o", "out", "--overwrite", "--set", "output.export=[]"});
   ASSERT_EQ(r.status, 0) << r.err;
   std::vector<std::string> left;
-  for (const auto& e : fs::directory_iterator(dir.work() / "out/particles")) left.push_back(e.path().filename().string());
+  for (const auto& e : fs::directory_iterator(dir.work() / "out/particles"))
+    left.push_back(e.path().filename().string());
   EXPECT_EQ(left, std::vector<std::string>{"notes.txt"});
 }
 

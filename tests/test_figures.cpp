@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "io/csv.h"
 #include "analysis/figures.h"
-#include "app/eta.h"
 #include "analysis/plot.h"
+#include "app/eta.h"
+#include "io/csv.h"
 #include "scene/scene.h"
 #include "test_process.h"
 
@@ -101,11 +101,13 @@ TEST(Figures, ScriptCarriesItsDataMeansAndFormat) {
 
 TEST(Figures, LegendGoesWhereItCoversNoData) {
   const CaseDir dir;
-  const auto t = table_of(dir, "scaling.csv", "particles,us_per_particle_step,us_neighbors_per_particle,a,b,c\n1,2,3,4,5,6\n");
+  const auto t =
+      table_of(dir, "scaling.csv", "particles,us_per_particle_step,us_neighbors_per_particle,a,b,c\n1,2,3,4,5,6\n");
   FigureSpec s;
   s.inputs = {t.path};
   s.x = "particles";
-  for (const auto& y : std::vector<std::vector<std::string>>{{"a"}, {"a", "b"}, {"a", "b", "c", "us_per_particle_step"}}) {
+  for (const auto& y :
+       std::vector<std::vector<std::string>>{{"a"}, {"a", "b"}, {"a", "b", "c", "us_per_particle_step"}}) {
     s.y = y;
     const std::string gp = analysis::figure_script(s, analysis::figure_series(s, {t}));
     // Above the plot, whatever the entries: inside, it covered the spikes at t = 0.
@@ -156,7 +158,8 @@ TEST(Figures, BadInputNamesTheFileTheColumnAndWhatIsAllowed) {
     analysis::figure_series(s, {t});
     FAIL() << "a missing column must throw";
   } catch (const analysis::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("no column 'iterationz' (it has: time, iterations)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no column 'iterationz' (it has: time, iterations)"), std::string::npos)
+        << e.what();
   }
   s.y = {"iterations"};
   s.where = {"time=9"};
@@ -180,7 +183,7 @@ TEST(Eta, NoEstimateBeforeAFewFramesThenTheRecentPace) {
   EXPECT_FALSE(eta.seconds_left(2.0).has_value());
   eta.add(18, 0.2);
   eta.add(19, 0.3);
-  EXPECT_FALSE(eta.seconds_left(2.0).has_value());  // three frames: still none
+  EXPECT_FALSE(eta.seconds_left(2.0).has_value());               // three frames: still none
   for (int k = 4; k <= 14; ++k) eta.add(19 + (k - 3), 0.1 * k);  // then 1 s per 0.1 s
   ASSERT_TRUE(eta.seconds_left(2.0).has_value());
   // 0.6 s left at 10 s per simulated second; since the start it would say about 14 s.
@@ -249,7 +252,7 @@ TEST(Experiments, IterationsGrowWithTimeStepAndColumnHeight) {
   ASSERT_EQ(h.rows.size(), 2u);
   EXPECT_GT(value(h, 1, "particles"), value(h, 0, "particles"));
   EXPECT_GT(value(h, 1, "avg_iterations"), value(h, 0, "avg_iterations"));  // Figure 6b
-  EXPECT_TRUE(fs::exists(dir.work() / "out/README.md"));  // the index of several experiments
+  EXPECT_TRUE(fs::exists(dir.work() / "out/README.md"));                    // the index of several experiments
 }
 
 TEST(Experiments, BoundaryIterationsUseTheGammaSearchsBest) {
@@ -326,7 +329,8 @@ TEST(Experiments, ParallelTimesTheSolverAndTheMachinesLoopsForEachThreadCount) {
     const double volume = std::stod(m.rows[row][col("gb_per_s")]) * std::stod(m.rows[row][col("ms")]);
     EXPECT_NEAR(volume, 3.0 * (8 << 20) * 2 / 1e6, 2e-3 * volume) << m.rows[row][col("threads")] << " threads";
   }
-  EXPECT_NE(read_text(dir.work() / "out/parallel/summary.md").find("The machine in the same rounds"), std::string::npos);
+  EXPECT_NE(read_text(dir.work() / "out/parallel/summary.md").find("The machine in the same rounds"),
+            std::string::npos);
   // Figure 11's columns: a row per thread count, the speed-up of one thread against itself is 1.
   const auto cols = analysis::read_csv_table((dir.work() / "out/parallel/column_threads.csv").string());
   ASSERT_EQ(cols.rows.size(), eff.rows.size());  // the quick run has one column
@@ -361,8 +365,8 @@ TEST(Experiments, UnknownNameAndBadFiguresInputAreOneLineErrors) {
 
 TEST(Experiments, FiguresRunDrawsTheStandardFiguresOfARun) {
   const CaseDir dir;
-  auto r = run_sluice(dir, {"simulate", std::string(SLUICE_SOURCE_DIR) + "/scenes/column.json", "-q", "-o", "run", "--set",
-                            "spacing=0.04", "--duration", "0.1"});
+  auto r = run_sluice(dir, {"simulate", std::string(SLUICE_SOURCE_DIR) + "/scenes/column.json", "-q", "-o", "run",
+                            "--set", "spacing=0.04", "--duration", "0.1"});
   ASSERT_EQ(r.status, 0) << r.err;
   r = run_sluice(dir, {"figures", "run", "run"});
   ASSERT_EQ(r.status, 0) << r.err;

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <random>
 
-#include "sph/kernel.h"
 #include "solver/simulation.h"
+#include "sph/kernel.h"
 
 namespace sluice {
 namespace {

@@ -42,7 +42,8 @@ bool pixel_is(const Image& img, int x, int y, Rgb c) {
 }
 
 // Pixels in the rectangle for which `pred` holds.
-long count_pixels(const Image& img, int x0, int y0, int w, int h, const std::function<bool(const std::uint8_t*)>& pred) {
+long count_pixels(const Image& img, int x0, int y0, int w, int h,
+                  const std::function<bool(const std::uint8_t*)>& pred) {
   long n = 0;
   for (int y = y0; y < y0 + h; ++y)
     for (int x = x0; x < x0 + w; ++x) n += pred(img.at(x, y));
@@ -82,9 +83,10 @@ TEST(Montage, CellsInRowMajorGridAtExactPositions) {
     EXPECT_EQ(L.cell_x(i), x);
     EXPECT_EQ(L.cell_y(i), y);
     // Every pixel of the cell is its colour, and the pixels around it are background.
-    EXPECT_EQ(count_pixels(m, x, y, 20, 10, [&](const std::uint8_t* p) {
-                return p[0] == kColours[i].r && p[1] == kColours[i].g && p[2] == kColours[i].b;
-              }),
+    EXPECT_EQ(count_pixels(m, x, y, 20, 10,
+                           [&](const std::uint8_t* p) {
+                             return p[0] == kColours[i].r && p[1] == kColours[i].g && p[2] == kColours[i].b;
+                           }),
               200)
         << "cell " << i;
     EXPECT_TRUE(pixel_is(m, x - 1, y, {255, 255, 255})) << "cell " << i;
@@ -195,8 +197,9 @@ Image crop(const Image& img, int x0, int y0, int w, int h) {
 TEST(RenderMontage, VaryGivesGridOfFourDistinctCells) {
   const test::CaseDir dir;
   const fs::path png = dir.work() / "m.png";
-  const test::Result r = test::run_sluice(dir, tiny_montage({"--times", "0,0.1", "--vary", "solver.boundary_pressure=extrapolation,zero",
-                                     "--cell", "160x90", "--color-by", "speed", "-o", png.string()}));
+  const test::Result r =
+      test::run_sluice(dir, tiny_montage({"--times", "0,0.1", "--vary", "solver.boundary_pressure=extrapolation,zero",
+                                          "--cell", "160x90", "--color-by", "speed", "-o", png.string()}));
   ASSERT_EQ(r.status, 0) << r.err;
   const Image m = read_png(png.string());
   // Two variants x two times, variant-major: columns = the number of times; two label
@@ -233,7 +236,8 @@ void expect_refused(const std::vector<std::string>& extra, int status, const std
   EXPECT_EQ(r.status, status) << r.err;
   EXPECT_EQ(r.err.rfind("sluice:", 0), 0u) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  for (const std::string& f : fragments) EXPECT_NE(r.err.find(f), std::string::npos) << "missing '" << f << "': " << r.err;
+  for (const std::string& f : fragments)
+    EXPECT_NE(r.err.find(f), std::string::npos) << "missing '" << f << "': " << r.err;
   EXPECT_FALSE(fs::exists(png));
 }
 

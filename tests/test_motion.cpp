@@ -72,7 +72,7 @@ TEST(Motion, RampAndKeyframes) {
   rot.ramp = 1.0;
   EXPECT_EQ(rot.at(0).omega, 0.0);
   EXPECT_NEAR(rot.at(0.5).omega, -0.5 * kPi, 1e-12);  // half way up the ramp: half the rate
-  EXPECT_NEAR(rot.at(1.0).alpha, 0.0, 1e-12);          // smooth at the ramp's end
+  EXPECT_NEAR(rot.at(1.0).alpha, 0.0, 1e-12);         // smooth at the ramp's end
   // After the ramp the angle is omega (t - ramp / 2): one clockwise turn at t = 2.5 s,
   // evaluated from the script (no accumulated increments).
   const Pose turn = rot.at(2.5);
@@ -98,7 +98,8 @@ TEST(Motion, RampAndKeyframes) {
 TEST(Motion, SceneKeysAndErrors) {
   const std::string base = R"({"spacing": 0.1, "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [1, 1]}],
     "boundaries": [{"shape": "circle", "center": [3, 3], "radius": 0.5, "motion": )";
-  const Scene s = test::scene_from_json(base + R"([{"type": "rotation", "pivot": [3, 3], "angular_velocity": -2, "ramp": 1},
+  const Scene s =
+      test::scene_from_json(base + R"([{"type": "rotation", "pivot": [3, 3], "angular_velocity": -2, "ramp": 1},
       {"type": "oscillation", "amplitude": 0.1, "period": 2, "angle": 0.5},
       {"type": "translation", "velocity": [1, 0], "start": 1, "end": 2},
       {"type": "keyframes", "interpolation": "smooth", "keys": [{"time": 0}, {"time": 1, "offset": [1, 0], "angle": 1}]}]}]})");
@@ -119,18 +120,23 @@ TEST(Motion, SceneKeysAndErrors) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(error(R"({"type": "spin"})").find(
-                R"(/boundaries/0/motion/type: invalid value "spin"; must be one of: rotation, translation, oscillation, keyframes)"),
-            std::string::npos);
-  EXPECT_NE(error(R"({"type": "rotation", "pivot": [0, 0]})").find("/boundaries/0/motion/angular_velocity: missing required key"),
+  EXPECT_NE(
+      error(R"({"type": "spin"})")
+          .find(
+              R"(/boundaries/0/motion/type: invalid value "spin"; must be one of: rotation, translation, oscillation, keyframes)"),
+      std::string::npos);
+  EXPECT_NE(error(R"({"type": "rotation", "pivot": [0, 0]})")
+                .find("/boundaries/0/motion/angular_velocity: missing required key"),
             std::string::npos);
   EXPECT_NE(error(R"([{"type": "rotation", "pivot": [0, 0], "angular_velocity": 1, "ramp": -1}])")
                 .find("/boundaries/0/motion/0/ramp: value -1 is out of range; must be >= 0 [s]"),
             std::string::npos);
-  EXPECT_NE(error(R"({"type": "oscillation", "period": 1})").find("give exactly one of \"amplitude\""), std::string::npos);
+  EXPECT_NE(error(R"({"type": "oscillation", "period": 1})").find("give exactly one of \"amplitude\""),
+            std::string::npos);
   EXPECT_NE(error(R"({"type": "oscillation", "period": 1, "amplitude": 1, "direction": [0, 0]})").find("has no length"),
             std::string::npos);
-  EXPECT_NE(error(R"({"type": "translation", "velocity": [1, 0], "start": 2, "end": 1})").find("/boundaries/0/motion/end: end 1 s is before start 2 s"),
+  EXPECT_NE(error(R"({"type": "translation", "velocity": [1, 0], "start": 2, "end": 1})")
+                .find("/boundaries/0/motion/end: end 1 s is before start 2 s"),
             std::string::npos);
   EXPECT_NE(error(R"({"type": "keyframes", "keys": [{"time": 1}, {"time": 1}]})")
                 .find("/boundaries/0/motion/keys/1/time: time 1 s is not after the previous key's 1 s"),
@@ -171,7 +177,8 @@ std::string rotor_scene(double h, double duration) {
 // Distance from p to the closed polygon's edges.
 double distance_to_polygon(const std::vector<Vec2>& poly, const Vec2& p) {
   double d = 1e300;
-  for (size_t i = 0; i < poly.size(); ++i) d = std::min(d, shapes::point_segment_distance(p, poly[i], poly[(i + 1) % poly.size()]));
+  for (size_t i = 0; i < poly.size(); ++i)
+    d = std::min(d, shapes::point_segment_distance(p, poly[i], poly[(i + 1) % poly.size()]));
   return d;
 }
 
@@ -185,7 +192,8 @@ TEST(MovingBoundaries, RotorStirsWithoutLeaks) {
   ASSERT_TRUE(sim.has_moving_boundaries());
   const BoundaryObject& rotor = scene.objects[1];
   std::vector<Vec2> rotor_poly;  // the polygon as given (pose at rest)
-  for (const auto& p : scene.resolved["boundaries"][1]["points"]) rotor_poly.emplace_back(p[0].get<double>(), p[1].get<double>());
+  for (const auto& p : scene.resolved["boundaries"][1]["points"])
+    rotor_poly.emplace_back(p[0].get<double>(), p[1].get<double>());
   // The compression the positions reach (Eq. 15 at each step's start after the first),
   // not the solver's prediction, which its exit condition bounds.
   double sum_err = 0, max_err = 0, deepest_in_rotor = 0, farthest_out = 0;
@@ -219,9 +227,10 @@ TEST(MovingBoundaries, RotorStirsWithoutLeaks) {
   EXPECT_LT(angular_momentum, 0.0) << "the rotor turns clockwise";
   EXPECT_LE(sum_err / static_cast<double>(steps), scene.solver.tolerance_percent);
   EXPECT_LE(max_err, 2 * scene.solver.tolerance_percent);
-  std::printf("[ measured ] rotor: %ld steps, realized compression average %.4f %%, largest %.4f %%, angular momentum "
-              "%.3f kg m^2/s per m, deepest in rotor %.4f m, farthest out %.4f m\n",
-              steps, sum_err / static_cast<double>(steps), max_err, angular_momentum, deepest_in_rotor, farthest_out);
+  std::printf(
+      "[ measured ] rotor: %ld steps, realized compression average %.4f %%, largest %.4f %%, angular momentum "
+      "%.3f kg m^2/s per m, deepest in rotor %.4f m, farthest out %.4f m\n",
+      steps, sum_err / static_cast<double>(steps), max_err, angular_momentum, deepest_in_rotor, farthest_out);
 }
 
 // A plate moving at constant speed through a block of fluid at rest (no gravity, free
@@ -260,7 +269,8 @@ double density_error_ahead_of_plate(bool velocity_in_source) {
 TEST(MovingBoundaries, BoundaryVelocityInSourceTermMatters) {
   const double with = density_error_ahead_of_plate(true);
   const double without = density_error_ahead_of_plate(false);
-  std::printf("density error ahead of the plate: %.4f %% with v_b in the source term, %.4f %% without\n", with, without);
+  std::printf("density error ahead of the plate: %.4f %% with v_b in the source term, %.4f %% without\n", with,
+              without);
   EXPECT_LE(with, 0.1);     // the scene's tolerance
   EXPECT_GT(without, 0.5);  // five times the tolerance
 }

@@ -140,10 +140,11 @@ TEST_P(Hydrostatic, PressureMatchesDepth) {
   const auto r = analysis::run_hydrostatic(scene, 0.4, 1.5, c.zero_pressure_wall);
   if (std::getenv("SLUICE_TEST_VERBOSE"))
     for (const auto& b : r.bins) std::printf("  d = %.3f  <p>/(rho0 g d) = %.4f\n", b.depth, b.ratio);
-  std::printf("[ measured ] hydrostatic %s: %ld steps (%ld at max_iterations), surface %.4f m, end max speed "
-              "%.3e m/s, worst bin error %.4f at d = %.3f m, slope error %.4f, floor bin ratio %.3f\n",
-              c.name.c_str(), r.steps, r.capped, r.surface, r.max_speed_end, r.worst_bin_error, r.worst_depth,
-              r.slope_error, r.floor_ratio);
+  std::printf(
+      "[ measured ] hydrostatic %s: %ld steps (%ld at max_iterations), surface %.4f m, end max speed "
+      "%.3e m/s, worst bin error %.4f at d = %.3f m, slope error %.4f, floor bin ratio %.3f\n",
+      c.name.c_str(), r.steps, r.capped, r.surface, r.max_speed_end, r.worst_bin_error, r.worst_depth, r.slope_error,
+      r.floor_ratio);
   ASSERT_GE(r.bins.size(), 10u);
   EXPECT_LT(r.worst_bin_error, c.bin_tolerance);
   EXPECT_LT(r.slope_error, c.slope_tolerance);
@@ -163,7 +164,9 @@ std::vector<analysis::HydrostaticCase> holding_hydrostatic_cases() {
 }
 
 INSTANTIATE_TEST_SUITE_P(Physics, Hydrostatic, ::testing::ValuesIn(holding_hydrostatic_cases()),
-                         [](const ::testing::TestParamInfo<analysis::HydrostaticCase>& param_info) { return param_info.param.name; });
+                         [](const ::testing::TestParamInfo<analysis::HydrostaticCase>& param_info) {
+                           return param_info.param.name;
+                         });
 
 // --- dam break: IISPH convergence and containment --------------------------------------------
 
@@ -172,8 +175,8 @@ INSTANTIATE_TEST_SUITE_P(Physics, Hydrostatic, ::testing::ValuesIn(holding_hydro
 struct DamBreakRun {
   Scene scene;
   std::vector<StepStats> stats;
-  long escapes = 0;           // particle-steps outside the tank (margin h/2)
-  std::string first_escape;   // description of the first one
+  long escapes = 0;          // particle-steps outside the tank (margin h/2)
+  std::string first_escape;  // description of the first one
 };
 
 const DamBreakRun& dam_break() {
@@ -230,9 +233,10 @@ TEST(Physics, DamBreakIisphMeetsTolerance) {
     realized_max = std::max(realized_max, r.stats[k].density_error_percent);
   }
   realized /= static_cast<double>(r.stats.size() - 1);
-  std::printf("[ measured ] dam break: %zu steps, max iterations %d, steps at max_iterations %ld, worst predicted %.4f%%, "
-              "realized average %.4f%%, largest %.4f%%\n",
-              r.stats.size(), max_iter, capped, worst, realized, realized_max);
+  std::printf(
+      "[ measured ] dam break: %zu steps, max iterations %d, steps at max_iterations %ld, worst predicted %.4f%%, "
+      "realized average %.4f%%, largest %.4f%%\n",
+      r.stats.size(), max_iter, capped, worst, realized, realized_max);
   EXPECT_EQ(capped, 0);
   EXPECT_LE(realized, s.tolerance_percent);
   EXPECT_LE(realized_max, 2 * s.tolerance_percent);
@@ -254,7 +258,8 @@ std::uint64_t run_hash(const std::string& solver, double dt, int threads, int st
   const Scene scene = scene_from_json(R"({
     "spacing": 0.01,
     "solver": {)" + solver + R"(},
-    "time": {"dt": )" + std::to_string(dt) + R"(, "duration": 1},
+    "time": {"dt": )" + std::to_string(dt) +
+                                      R"(, "duration": 1},
     "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.8]}],
     "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.8, 1.0]}]
   })");
@@ -287,12 +292,12 @@ TEST_P(Determinism, SameBitsForThreadsAndRuns) {
 
 INSTANTIATE_TEST_SUITE_P(
     Physics, Determinism,
-    ::testing::Values(DeterminismCase{"iisph", R"("type": "iisph")", 2e-3, 40},
-                      DeterminismCase{"iisph_viscosity_mirroring",
-                                      R"("type": "iisph", "viscosity": 0.01, "boundary_pressure": "mirroring")", 2e-3, 40},
-                      DeterminismCase{"wcsph", R"("type": "wcsph", "stiffness": 5e5)", 1.5e-4, 60},
-                      DeterminismCase{"wcsph_viscosity", R"("type": "wcsph", "stiffness": 5e5, "viscosity": 0.01)", 1.5e-4,
-                                      60}),
+    ::testing::Values(
+        DeterminismCase{"iisph", R"("type": "iisph")", 2e-3, 40},
+        DeterminismCase{"iisph_viscosity_mirroring",
+                        R"("type": "iisph", "viscosity": 0.01, "boundary_pressure": "mirroring")", 2e-3, 40},
+        DeterminismCase{"wcsph", R"("type": "wcsph", "stiffness": 5e5)", 1.5e-4, 60},
+        DeterminismCase{"wcsph_viscosity", R"("type": "wcsph", "stiffness": 5e5, "viscosity": 0.01)", 1.5e-4, 60}),
     [](const ::testing::TestParamInfo<DeterminismCase>& param_info) { return param_info.param.name; });
 
 // The fused Jacobi sweep (Simulation::jacobi_sweep) gives the bits of the two plain
@@ -307,7 +312,8 @@ TEST(Physics, JacobiSweepBlocksDoNotChangeBits) {
   for (const char* method : {"solved", "extrapolation", "mirroring", "zero"}) {
     const Scene scene = scene_from_json(R"({
       "spacing": 0.01,
-      "solver": {"type": "iisph", "boundary_pressure": ")" + std::string(method) + R"("},
+      "solver": {"type": "iisph", "boundary_pressure": ")" +
+                                        std::string(method) + R"("},
       "time": {"dt": 2e-3, "duration": 1},
       "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.8]}],
       "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.8, 1.0]}]
@@ -412,11 +418,10 @@ TEST(Physics, InstabilityIsDetected) {
   std::printf("[ measured ] instability after %d steps: %s\n", steps, message.c_str());
   ASSERT_FALSE(message.empty()) << "no SimulationUnstable in 200 steps";
   EXPECT_NE(message.find("unstable at step"), std::string::npos) << message;
-  const bool has_cause = message.find("non-finite") != std::string::npos ||
-                         message.find("left the scene") != std::string::npos ||
-                         message.find("compression error") != std::string::npos ||
-                        message.find("past a wall") != std::string::npos ||
-                         message.find("dt_min") != std::string::npos;
+  const bool has_cause =
+      message.find("non-finite") != std::string::npos || message.find("left the scene") != std::string::npos ||
+      message.find("compression error") != std::string::npos || message.find("past a wall") != std::string::npos ||
+      message.find("dt_min") != std::string::npos;
   EXPECT_TRUE(has_cause) << message;
 }
 
@@ -439,9 +444,10 @@ TEST(Physics, BruteForceMatchesGrid) {
     dp = std::max(dp, std::abs(a.p[i] - b.p[i]));
     pmax = std::max(pmax, std::abs(a.p[i]));
   }
-  std::printf("[ measured ] brute vs grid after 40 steps: max |dx| %.3e m, |dv| %.3e m/s, |dp| %.3e (max p %.3e), "
-              "bitwise %s\n",
-              dx, dv, dp, pmax, test::state_hash(grid) == test::state_hash(brute) ? "equal" : "different");
+  std::printf(
+      "[ measured ] brute vs grid after 40 steps: max |dx| %.3e m, |dv| %.3e m/s, |dp| %.3e (max p %.3e), "
+      "bitwise %s\n",
+      dx, dv, dp, pmax, test::state_hash(grid) == test::state_hash(brute) ? "equal" : "different");
   // Not bitwise: the brute-force lists are sorted by index, the grid's are in cell
   // order, so every neighbour sum is added in a different order. Measured after 40 steps:
   // |dx| 2.9e-16 m, |dv| 3.9e-14 m/s, |dp| 1.6e-9 of p up to 2e3 (8e-13 relative). The

@@ -25,8 +25,9 @@ namespace {
 // step so that the pressures are a real field.
 Simulation resting_block(const std::string& method, bool boundary_diagonal = true) {
   Simulation sim(test::scene_from_json(R"({"spacing": 0.02,
-    "solver": {"boundary_pressure": ")" + method + R"(", "boundary_diagonal": )" +
-                                       (boundary_diagonal ? "true" : "false") + R"(},
+    "solver": {"boundary_pressure": ")" +
+                                       method + R"(", "boundary_diagonal": )" + (boundary_diagonal ? "true" : "false") +
+                                       R"(},
     "time": {"duration": 0.1, "fps": 10, "dt": 1e-3, "settle": 0.2},
     "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.2, 0.2]}],
     "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.2, 0.3], "lid": false}]})"));
@@ -38,8 +39,7 @@ constexpr double kDt = 1e-3;
 
 // d(Ap)_i / dp_i by a central difference around the hydrostatic field (the operator
 // is linear away from the clamps; p > 0 everywhere keeps Eq. 25's p_b off its clamp).
-double numeric_diagonal(SolverProbe& probe, std::vector<double> p, const std::vector<double>& pb, Index i,
-                        double eps) {
+double numeric_diagonal(SolverProbe& probe, std::vector<double> p, const std::vector<double>& pb, Index i, double eps) {
   std::vector<double> ap_plus, ap_minus, apb;
   p[i] += eps;
   probe.apply(p, pb, ap_plus, apb);

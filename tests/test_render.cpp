@@ -13,8 +13,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -128,7 +128,7 @@ TEST(RenderGolden, MovingBoundaryAndViewWindow) {
     "boundaries": [{"name": "tank", "shape": "box", "min": [0, 0], "max": [0.4, 0.25]},
                    {"name": "paddle", "shape": "polygon", "points": [[0.03, 0], [0.05, 0], [0.05, 0.2], [0.03, 0.2]],
                     "motion": {"type": "oscillation", "angular_amplitude": 0.3, "pivot": [0.04, 0], "period": 0.8}}]})",
-                                 "render_moving.json");
+                                  "render_moving.json");
   view::ImageOptions from_scene;  // every image setting from the scene's render section
   check_frames(scene, {{"render_moving_frame4_pressure_viridis.png", 4, from_scene}});
 }
@@ -246,8 +246,7 @@ TEST(RenderLayout, TankLinesUpAcrossColourFields) {
   EXPECT_EQ(rightmost_wall(ia, y), rightmost_wall(ib, y));
   // The same scene pixels, apart from the colours of the fluid (both blue at rest: equal).
   for (int row = L.band_h; row < 720; row += 37)
-    for (int x = 0; x < L.strip_x; ++x)
-      ASSERT_EQ(0, std::memcmp(ia.at(x, row), ib.at(x, row), 3)) << x << "," << row;
+    for (int x = 0; x < L.strip_x; ++x) ASSERT_EQ(0, std::memcmp(ia.at(x, row), ib.at(x, row), 3)) << x << "," << row;
   // The colorbar sits beside the tank: the issue measured 240 px of white between them.
   EXPECT_LT(L.bar_x - L.scene_x1, 3 * L.text_px);
   EXPECT_GT(L.bar_x, L.scene_x1);
@@ -334,7 +333,7 @@ TEST(RenderOptions, BackgroundAndObjectColours) {
   EXPECT_LT(count_colour(img, {255, 255, 255}), 50);  // no white background left
   const std::uint8_t* corner = img.at(0, img.height - 1);
   EXPECT_EQ(corner[0] + corner[1] + corner[2], 0);
-  EXPECT_GT(count_colour(img, {208, 64, 64}), 200);   // the tank in its colour
+  EXPECT_GT(count_colour(img, {208, 64, 64}), 200);  // the tank in its colour
   const FrameLayout L = fit_layout(view::resolve_image(o, scene).frame);
   EXPECT_EQ(rightmost_wall(img, (L.scene_y0 + L.scene_y1) / 2), -1);  // and no grey wall left
   // Light labels on the dark background: the colorbar strip holds near-white ink.
@@ -407,8 +406,17 @@ TEST(Video, FormatsAndQualityReachFfmpeg) {
 // --- The program's render flags ----------------------------------------------------------
 
 std::vector<std::string> tiny_render(const fs::path& out, const std::vector<std::string>& extra) {
-  std::vector<std::string> a = {"render", std::string(SLUICE_SOURCE_DIR) + "/scenes/column.json", "-o", out.string(),
-                                "--set", "spacing=0.04", "--set", "time.duration=0.2", "--resolution", "160x90", "-q"};
+  std::vector<std::string> a = {"render",
+                                std::string(SLUICE_SOURCE_DIR) + "/scenes/column.json",
+                                "-o",
+                                out.string(),
+                                "--set",
+                                "spacing=0.04",
+                                "--set",
+                                "time.duration=0.2",
+                                "--resolution",
+                                "160x90",
+                                "-q"};
   a.insert(a.end(), extra.begin(), extra.end());
   return a;
 }
@@ -440,9 +448,9 @@ TEST(RenderFlags, BadValuesAreOneLineNamingTheFlag) {
 TEST(RenderFlags, GifAndWebmWithAFramePattern) {
   const test::CaseDir cases;
   const fs::path dir = cases.work();
-  test::Result r = test::run_sluice(cases, tiny_render(dir / "gif", {"--format", "gif", "--frame-pattern", "shot-%03d.png",
-                                                                   "--overlay", "time", "--title", "Column",
-                                                                   "--particle-scale", "1.5"}));
+  test::Result r = test::run_sluice(
+      cases, tiny_render(dir / "gif", {"--format", "gif", "--frame-pattern", "shot-%03d.png", "--overlay", "time",
+                                       "--title", "Column", "--particle-scale", "1.5"}));
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir / "gif" / "frames" / "shot-000.png"));
   EXPECT_TRUE(fs::exists(dir / "gif" / "frames" / "shot-004.png"));

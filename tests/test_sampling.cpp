@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "scene/scene.h"
 #include "core/shapes.h"
+#include "scene/scene.h"
 #include "solver/simulation.h"
 #include "temp_dir.h"
 #include "test_util.h"
@@ -52,7 +52,8 @@ using test::TempDir;
 
 TEST(GradedSpacing, IntegralMatchesQuadrature) {
   EXPECT_EQ(shapes::spacing_integral(1.0, {0.1, 0.1}), 1.0 / 0.1);  // uniform: exactly L / s, as before
-  for (const auto& s : {shapes::SegmentSpacing{0.02, 0.1}, shapes::SegmentSpacing{0.1, 0.02}, shapes::SegmentSpacing{0.05, 0.051}}) {
+  for (const auto& s :
+       {shapes::SegmentSpacing{0.02, 0.1}, shapes::SegmentSpacing{0.1, 0.02}, shapes::SegmentSpacing{0.05, 0.051}}) {
     SCOPED_TRACE(std::to_string(s.start) + " -> " + std::to_string(s.end));
     const double L = 2.0;
     const int n = 2000;  // Simpson's rule on 1 / s(u): error ~ 1e-13 here
@@ -71,7 +72,8 @@ TEST(GradedSpacing, IntegralMatchesQuadrature) {
 TEST(GradedSpacing, SegmentKeepsVerticesAndGrades) {
   // A 2 m wall, spacing 0.02 at x = 0 growing linearly to 0.1 at x = 2.
   const Scene s = parse_scene(boundary(R"({"shape": "polyline", "points": [[0, 3], [2, 3]], "spacing": [[0.02, 0.1]],
-      "layers": 1, "surface_offset": 0})"), kFile);
+      "layers": 1, "surface_offset": 0})"),
+                              kFile);
   const auto b = samples_of(s, 0);
   const double integral = 2.0 * std::log(5.0) / 0.08;  // = 40.24 intervals
   ASSERT_EQ(b.size(), static_cast<std::size_t>(std::llround(integral)) + 1);
@@ -87,12 +89,13 @@ TEST(GradedSpacing, SegmentKeepsVerticesAndGrades) {
     // the gaps are geometric (ratio 5^(1/40)), s is linear; they differ by 0.7% here.
     EXPECT_NEAR(gap / (0.02 + 0.08 * mid / 2.0), 1.0, 0.02) << "gap " << k;
   }
-  EXPECT_NEAR((b[1].x() - b[0].x()) / 0.02, 1.0, 0.1);  // first gap about s_start
+  EXPECT_NEAR((b[1].x() - b[0].x()) / 0.02, 1.0, 0.1);                // first gap about s_start
   EXPECT_NEAR((b.back().x() - b[b.size() - 2].x()) / 0.1, 1.0, 0.1);  // last about s_end
 
   // Walking the segment the other way with the pair reversed gives the mirror image.
   const Scene r = parse_scene(boundary(R"({"shape": "polyline", "points": [[2, 3], [0, 3]], "spacing": [[0.1, 0.02]],
-      "layers": 1, "surface_offset": 0})"), kFile);
+      "layers": 1, "surface_offset": 0})"),
+                              kFile);
   const auto m = samples_of(r, 0);
   ASSERT_EQ(m.size(), b.size());
   for (std::size_t k = 0; k < b.size(); ++k) EXPECT_NEAR(m[k].x(), b[b.size() - 1 - k].x(), 1e-12);
@@ -101,7 +104,8 @@ TEST(GradedSpacing, SegmentKeepsVerticesAndGrades) {
 TEST(GradedSpacing, LayersFollowTheSameLaw) {
   // A straight wall: the offset layer has the segment's length, so the same samples shifted.
   const Scene s = parse_scene(boundary(R"({"shape": "polyline", "points": [[0, 3], [2, 3]], "spacing": [[0.02, 0.1]],
-      "layers": 2, "layer_spacing": 0.05, "surface_offset": 0})"), kFile);
+      "layers": 2, "layer_spacing": 0.05, "surface_offset": 0})"),
+                              kFile);
   const auto b = samples_of(s, 0);
   ASSERT_EQ(b.size() % 2, 0u);
   const std::size_t n = b.size() / 2;
@@ -111,8 +115,10 @@ TEST(GradedSpacing, LayersFollowTheSameLaw) {
   }
 
   // A closed box with graded walls: each layer's side of length l gets round(integral) intervals.
-  const Scene box = parse_scene(boundary(R"({"shape": "box", "min": [0, 0], "max": [1, 1], "lid": true, "layer_spacing": 0.1,
-      "spacing": [[0.02, 0.1], 0.1, [0.1, 0.05], [0.05, 0.02]]})"), kFile);
+  const Scene box =
+      parse_scene(boundary(R"({"shape": "box", "min": [0, 0], "max": [1, 1], "lid": true, "layer_spacing": 0.1,
+      "spacing": [[0.02, 0.1], 0.1, [0.1, 0.05], [0.05, 0.02]]})"),
+                  kFile);
   const std::vector<shapes::SegmentSpacing> walls = {{0.02, 0.1}, {0.1, 0.1}, {0.1, 0.05}, {0.05, 0.02}};
   std::size_t expected = 0;
   for (const double side : {1.1, 1.3})  // layers half and one and a half layer spacings outside
@@ -131,8 +137,10 @@ TEST(GradedSpacing, LayersFollowTheSameLaw) {
 
 TEST(GradedSpacing, NumberEntriesUnchanged) {
   auto wall = [](const std::string& spacing) {
-    return parse_scene(boundary(R"({"shape": "polyline", "points": [[0, 3], [1, 3], [1, 4.3]], "layers": 3, "spacing": )" +
-                                spacing + "}"), kFile);
+    return parse_scene(
+        boundary(R"({"shape": "polyline", "points": [[0, 3], [1, 3], [1, 4.3]], "layers": 3, "spacing": )" + spacing +
+                 "}"),
+        kFile);
   };
   // A pair with equal ends is the plain number, bit for bit.
   const Scene plain = wall("[0.1, 0.25]");
@@ -172,7 +180,8 @@ void expect_point_samples(const Scene& s) {
 }
 
 TEST(PointSamples, InlineList) {
-  const Scene s = parse_scene(boundary(R"({"shape": "points", "samples": [[0.05, 0.05], [0.5, 0.5], [0.95, 0.93], [3, 3]]})"), kFile);
+  const Scene s = parse_scene(
+      boundary(R"({"shape": "points", "samples": [[0.05, 0.05], [0.5, 0.5], [0.95, 0.93], [3, 3]]})"), kFile);
   expect_point_samples(s);
   EXPECT_EQ(s.objects[0].name, "points0");
   const auto& r = s.resolved["boundaries"][0];
@@ -182,7 +191,9 @@ TEST(PointSamples, InlineList) {
 
   // The shape has no inside: fluid enclosed by a ring of samples stays (only the four
   // lattice points around each sample go), and a named object keeps its name.
-  const Scene ring = parse_scene(boundary(R"({"shape": "points", "name": "ring", "samples": [[0.2, 0.2], [0.8, 0.2], [0.8, 0.8], [0.2, 0.8]]})"), kFile);
+  const Scene ring = parse_scene(
+      boundary(R"({"shape": "points", "name": "ring", "samples": [[0.2, 0.2], [0.8, 0.2], [0.8, 0.8], [0.2, 0.8]]})"),
+      kFile);
   EXPECT_EQ(ring.objects[0].name, "ring");
   EXPECT_EQ(ring.fluid_removed, 16);
   EXPECT_EQ(ring.fluid_near_samples, 16);
@@ -230,7 +241,8 @@ void expect_errors(const std::vector<BadCase>& cases, const std::string& file) {
     SCOPED_TRACE(c.what);
     const std::string msg = error_of(c.text, file);
     EXPECT_NE(msg.find(file + ":"), std::string::npos) << msg;
-    for (const auto& e : c.expected) EXPECT_NE(msg.find(e), std::string::npos) << "message: " << msg << "\nexpected: " << e;
+    for (const auto& e : c.expected)
+      EXPECT_NE(msg.find(e), std::string::npos) << "message: " << msg << "\nexpected: " << e;
   }
 }
 
@@ -238,26 +250,43 @@ TEST(SamplingErrors, GradedSpacing) {
   const std::string two = R"({"shape": "polyline", "points": [[0, 3], [1, 3], [1, 4]], "spacing": )";
   expect_errors(
       {
-          {"negative end", boundary(two + "[[0.1, -1], 0.1]}"), {"/boundaries/0/spacing/0/1: value -1 is out of range; must be > 0 [m]"}},
-          {"zero start", boundary(two + "[0.1, [0, 0.1]]}"), {"/boundaries/0/spacing/1/0: value 0 is out of range; must be > 0 [m]"}},
-          {"one-element pair", boundary(two + "[[0.1], 0.1]}"),
+          {"negative end",
+           boundary(two + "[[0.1, -1], 0.1]}"),
+           {"/boundaries/0/spacing/0/1: value -1 is out of range; must be > 0 [m]"}},
+          {"zero start",
+           boundary(two + "[0.1, [0, 0.1]]}"),
+           {"/boundaries/0/spacing/1/0: value 0 is out of range; must be > 0 [m]"}},
+          {"one-element pair",
+           boundary(two + "[[0.1], 0.1]}"),
            {"/boundaries/0/spacing/0: expected a spacing > 0 [m] or a pair [s_start, s_end]", "got [0.1]"}},
-          {"three-element pair", boundary(two + "[0.1, [0.1, 0.2, 0.3]]}"),
+          {"three-element pair",
+           boundary(two + "[0.1, [0.1, 0.2, 0.3]]}"),
            {"/boundaries/0/spacing/1: expected a spacing > 0 [m] or a pair [s_start, s_end]", "got [0.1,0.2,0.3]"}},
-          {"string entry", boundary(two + R"([0.1, "fine"]})"), {"/boundaries/0/spacing/1: expected a spacing", R"(got "fine")"}},
-          {"pair entry not numbers", boundary(two + R"([0.1, [0.1, "a"]]})"), {R"(/boundaries/0/spacing/1/1: expected a number, got "a")"}},
-          {"wrong count", boundary(two + "[[0.1, 0.2]]}"),
-           {"/boundaries/0/spacing: expected 2 spacings (one per segment), got 1; each entry is a number or a pair [s_start, s_end]"}},
+          {"string entry",
+           boundary(two + R"([0.1, "fine"]})"),
+           {"/boundaries/0/spacing/1: expected a spacing", R"(got "fine")"}},
+          {"pair entry not numbers",
+           boundary(two + R"([0.1, [0.1, "a"]]})"),
+           {R"(/boundaries/0/spacing/1/1: expected a number, got "a")"}},
+          {"wrong count",
+           boundary(two + "[[0.1, 0.2]]}"),
+           {"/boundaries/0/spacing: expected 2 spacings (one per segment), got 1; each entry is a number or a pair "
+            "[s_start, s_end]"}},
           {"pair without brackets on one segment",
            boundary(R"({"shape": "polyline", "points": [[0, 3], [1, 3]], "spacing": [0.02, 0.1]})"),
-           {"/boundaries/0/spacing: expected 1 spacings (one per segment), got 2; a graded spacing is a pair inside the array: [[s_start, s_end]]"}},
-          {"box wall count", boundary(R"({"shape": "box", "min": [0, 0], "max": [4, 4], "spacing": [[0.1, 0.2]]})"),
+           {"/boundaries/0/spacing: expected 1 spacings (one per segment), got 2; a graded spacing is a pair inside "
+            "the array: [[s_start, s_end]]"}},
+          {"box wall count",
+           boundary(R"({"shape": "box", "min": [0, 0], "max": [4, 4], "spacing": [[0.1, 0.2]]})"),
            {"/boundaries/0/spacing: expected 4 spacings (one per segment: bottom, right, top, left), got 1"}},
-          {"circle stays uniform", boundary(R"({"shape": "circle", "center": [5, 5], "radius": 1, "spacing": [0.1, 0.2]})"),
+          {"circle stays uniform",
+           boundary(R"({"shape": "circle", "center": [5, 5], "radius": 1, "spacing": [0.1, 0.2]})"),
            {"/boundaries/0/spacing: expected a number, got [0.1,0.2]; circles and ellipses are sampled uniformly"}},
-          {"ellipse stays uniform", boundary(R"({"shape": "ellipse", "center": [5, 5], "radii": [1, 2], "spacing": [[0.1, 0.2]]})"),
+          {"ellipse stays uniform",
+           boundary(R"({"shape": "ellipse", "center": [5, 5], "radii": [1, 2], "spacing": [[0.1, 0.2]]})"),
            {"/boundaries/0/spacing: expected a number, got [[0.1,0.2]]"}},
-          {"huge count", boundary(R"({"shape": "polyline", "points": [[0, 3], [1, 3]], "spacing": [[1e-9, 1e-9]]})"),
+          {"huge count",
+           boundary(R"({"shape": "polyline", "points": [[0, 3], [1, 3]], "spacing": [[1e-9, 1e-9]]})"),
            {"/boundaries/0: would create about", "boundary samples; the limit is 20000000"}},
       },
       kFile);
@@ -275,40 +304,76 @@ TEST(SamplingErrors, PointSamples) {
   auto csv = [&](const std::string& name) { return (dir.path() / name).string(); };
   expect_errors(
       {
-          {"missing file", boundary(R"({"shape": "points", "file": "walls/none.csv"})"),
+          {"missing file",
+           boundary(R"({"shape": "points", "file": "walls/none.csv"})"),
            {"/boundaries/0/file: cannot open \"" + (dir.path() / "walls" / "none.csv").string() + "\"",
             "relative file is looked up in the scene file's directory"}},
-          {"a folder, not a file", boundary(R"({"shape": "points", "file": "."})"), {"/boundaries/0/file: ", "is not a regular file"}},
-          {"semicolon", points_file("semicolon.csv", "x,y\n0,0\n1;2\n"),
+          {"a folder, not a file",
+           boundary(R"({"shape": "points", "file": "."})"),
+           {"/boundaries/0/file: ", "is not a regular file"}},
+          {"semicolon",
+           points_file("semicolon.csv", "x,y\n0,0\n1;2\n"),
            {"/boundaries/0/file: " + csv("semicolon.csv") + ":3: expected two numbers x,y, got '1;2'"}},
-          {"three numbers", points_file("three.csv", "0,0\n1,2,3\n"), {csv("three.csv") + ":2: expected two numbers x,y, got '1,2,3'"}},
-          {"one number", points_file("one.csv", "# c\n\n5\n"), {csv("one.csv") + ":3: expected two numbers x,y, got '5'"}},
-          {"empty field", points_file("empty_field.csv", "1,\n"), {csv("empty_field.csv") + ":1: expected two numbers x,y, got '1,'"}},
-          {"trailing text", points_file("trailing.csv", "1,2m\n"), {csv("trailing.csv") + ":1: expected two numbers x,y, got '1,2m'"}},
-          {"two signs", points_file("signs.csv", "+-3,1\n"), {csv("signs.csv") + ":1: expected two numbers x,y, got '+-3,1'"}},
-          {"header after data", points_file("header.csv", "0,0\nx,y\n"), {csv("header.csv") + ":2: expected two numbers x,y, got 'x,y'"}},
-          {"nan", points_file("nan.csv", "0,0\nnan,1\n"), {csv("nan.csv") + ":2: 'nan,1' is not a finite point; coordinates must be finite numbers [m]"}},
+          {"three numbers",
+           points_file("three.csv", "0,0\n1,2,3\n"),
+           {csv("three.csv") + ":2: expected two numbers x,y, got '1,2,3'"}},
+          {"one number",
+           points_file("one.csv", "# c\n\n5\n"),
+           {csv("one.csv") + ":3: expected two numbers x,y, got '5'"}},
+          {"empty field",
+           points_file("empty_field.csv", "1,\n"),
+           {csv("empty_field.csv") + ":1: expected two numbers x,y, got '1,'"}},
+          {"trailing text",
+           points_file("trailing.csv", "1,2m\n"),
+           {csv("trailing.csv") + ":1: expected two numbers x,y, got '1,2m'"}},
+          {"two signs",
+           points_file("signs.csv", "+-3,1\n"),
+           {csv("signs.csv") + ":1: expected two numbers x,y, got '+-3,1'"}},
+          {"header after data",
+           points_file("header.csv", "0,0\nx,y\n"),
+           {csv("header.csv") + ":2: expected two numbers x,y, got 'x,y'"}},
+          {"nan",
+           points_file("nan.csv", "0,0\nnan,1\n"),
+           {csv("nan.csv") + ":2: 'nan,1' is not a finite point; coordinates must be finite numbers [m]"}},
           {"inf", points_file("inf.csv", "inf 1\n"), {csv("inf.csv") + ":1: 'inf 1' is not a finite point"}},
-          {"overflow", points_file("overflow.csv", "1e999,0\n"), {csv("overflow.csv") + ":1: '1e999,0' is not a finite point"}},
-          {"no samples in file", points_file("nothing.csv", "# nothing\nx,y\n\n"),
+          {"overflow",
+           points_file("overflow.csv", "1e999,0\n"),
+           {csv("overflow.csv") + ":1: '1e999,0' is not a finite point"}},
+          {"no samples in file",
+           points_file("nothing.csv", "# nothing\nx,y\n\n"),
            {"/boundaries/0/file: " + csv("nothing.csv") + ": no samples", "give at least one line x,y"}},
-          {"empty inline list", boundary(R"({"shape": "points", "samples": []})"),
+          {"empty inline list",
+           boundary(R"({"shape": "points", "samples": []})"),
            {"/boundaries/0/samples: the list is empty; give at least one sample [x, y]"}},
-          {"bad inline sample", boundary(R"({"shape": "points", "samples": [[0, 0], [1]]})"),
+          {"bad inline sample",
+           boundary(R"({"shape": "points", "samples": [[0, 0], [1]]})"),
            {"/boundaries/0/samples/1: expected an array of 2 numbers, got [1]"}},
-          {"inline not a list", boundary(R"({"shape": "points", "samples": 3})"), {"/boundaries/0/samples: expected an array of at least 1 points"}},
-          {"both", boundary(R"({"shape": "points", "file": "a.csv", "samples": [[0, 0]]})"),
+          {"inline not a list",
+           boundary(R"({"shape": "points", "samples": 3})"),
+           {"/boundaries/0/samples: expected an array of at least 1 points"}},
+          {"both",
+           boundary(R"({"shape": "points", "file": "a.csv", "samples": [[0, 0]]})"),
            {"/boundaries/0: both \"file\" and \"samples\" given; give exactly one"}},
-          {"neither", boundary(R"({"shape": "points", "name": "p"})"),
-           {"/boundaries/0: neither \"file\" nor \"samples\" given; give exactly one: \"file\" (a text file of x,y lines"}},
-          {"file not a string", boundary(R"({"shape": "points", "file": 3})"), {"/boundaries/0/file: expected a non-empty string, got 3"}},
-          {"layers", boundary(R"({"shape": "points", "samples": [[0, 0]], "layers": 2})"),
+          {"neither",
+           boundary(R"({"shape": "points", "name": "p"})"),
+           {"/boundaries/0: neither \"file\" nor \"samples\" given; give exactly one: \"file\" (a text file of x,y "
+            "lines"}},
+          {"file not a string",
+           boundary(R"({"shape": "points", "file": 3})"),
+           {"/boundaries/0/file: expected a non-empty string, got 3"}},
+          {"layers",
+           boundary(R"({"shape": "points", "samples": [[0, 0]], "layers": 2})"),
            {"/boundaries/0/layers: unknown key; allowed keys: shape, name, motion, file, samples"}},
-          {"spacing", boundary(R"({"shape": "points", "samples": [[0, 0]], "spacing": 0.1})"), {"/boundaries/0/spacing: unknown key"}},
-          {"misspelt key before the file is read", boundary(R"({"shape": "points", "file": "none.csv", "fluid_side": "left"})"),
+          {"spacing",
+           boundary(R"({"shape": "points", "samples": [[0, 0]], "spacing": 0.1})"),
+           {"/boundaries/0/spacing: unknown key"}},
+          {"misspelt key before the file is read",
+           boundary(R"({"shape": "points", "file": "none.csv", "fluid_side": "left"})"),
            {"/boundaries/0/fluid_side: unknown key"}},
-          {"shape list", boundary(R"({"shape": "dots"})"),
-           {"/boundaries/0/shape: invalid value \"dots\"; must be one of: box, polyline, polygon, circle, ellipse, points"}},
+          {"shape list",
+           boundary(R"({"shape": "dots"})"),
+           {"/boundaries/0/shape: invalid value \"dots\"; must be one of: box, polyline, polygon, circle, ellipse, "
+            "points"}},
       },
       scene_file);
 }
@@ -337,7 +402,8 @@ TEST_P(TankAtRest, WallsHoldTheFluidAtRestDensity) {
     "spacing": 0.02,
     "time": {"dt": 5e-4, "duration": 0.5},
     "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.4, 0.4]}],
-    "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.4, 0.6], "spacing": )" + std::to_string(c.wall_spacing) + "}]}");
+    "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.4, 0.6], "spacing": )" +
+                                            std::to_string(c.wall_spacing) + "}]}");
   ASSERT_EQ(scene.fluid_removed, 0);
   ASSERT_EQ(scene.solver.tolerance_percent, 0.1);
   Simulation sim(scene);
@@ -351,8 +417,8 @@ TEST_P(TankAtRest, WallsHoldTheFluidAtRestDensity) {
     ++steps;
     iterations += st.iterations;
     capped += st.iterations >= scene.solver.max_iterations;
-    predicted += st.avg_error_percent;    // at the solver's exit (Eq. 23)
-    actual += st.density_error_percent;   // of the positions at the step's start (Eq. 15)
+    predicted += st.avg_error_percent;   // at the solver's exit (Eq. 23)
+    actual += st.density_error_percent;  // of the positions at the step's start (Eq. 15)
     const FluidParticles& f = sim.fluid();
     double step_sum = 0;
     long step_count = 0;
@@ -361,8 +427,8 @@ TEST_P(TankAtRest, WallsHoldTheFluidAtRestDensity) {
       const double d = std::min({x.x(), W - x.x(), x.y()});  // to the nearest wall surface
       clearance = std::min(clearance, d);
       if (d < -0.5 * h && escapes++ == 0)
-        first_escape = "particle " + std::to_string(f.id[i]) + " at (" + std::to_string(x.x()) + ", " + std::to_string(x.y()) +
-                       ") at t = " + std::to_string(st.time);
+        first_escape = "particle " + std::to_string(f.id[i]) + " at (" + std::to_string(x.x()) + ", " +
+                       std::to_string(x.y()) + ") at t = " + std::to_string(st.time);
       if (x.y() < h) {  // f.rho is the density at the step's start, as the solver saw it
         step_sum += f.rho[i];
         ++step_count;
@@ -379,11 +445,13 @@ TEST_P(TankAtRest, WallsHoldTheFluidAtRestDensity) {
   double rms = 0;
   for (const Vec2& v : sim.fluid().v) rms += v.squaredNorm();
   rms = std::sqrt(rms / sim.fluid().size());
-  std::printf("[ measured ] tank at rest, %s (%zu wall samples): %ld steps, %.2f iterations on average (%ld at "
-              "max_iterations), average error predicted %.4f%% actual %.4f%%, first row rho %.3f (per step after "
-              "0.05 s in [%.3f, %.3f]), least wall clearance %.4f h, end rms speed %.3f m/s\n",
-              c.name.c_str(), scene.boundary_x.size(), steps, static_cast<double>(iterations) / static_cast<double>(steps), capped,
-              predicted / static_cast<double>(steps), actual / static_cast<double>(steps), row_mean, row_lo, row_hi, clearance / h, rms);
+  std::printf(
+      "[ measured ] tank at rest, %s (%zu wall samples): %ld steps, %.2f iterations on average (%ld at "
+      "max_iterations), average error predicted %.4f%% actual %.4f%%, first row rho %.3f (per step after "
+      "0.05 s in [%.3f, %.3f]), least wall clearance %.4f h, end rms speed %.3f m/s\n",
+      c.name.c_str(), scene.boundary_x.size(), steps, static_cast<double>(iterations) / static_cast<double>(steps),
+      capped, predicted / static_cast<double>(steps), actual / static_cast<double>(steps), row_mean, row_lo, row_hi,
+      clearance / h, rms);
 
   // No particle crosses a wall by more than h/2 (where the first sample layer sits).
   EXPECT_EQ(escapes, 0) << "first: " << first_escape;
@@ -408,7 +476,8 @@ TEST_P(TankAtRest, WallsHoldTheFluidAtRestDensity) {
 // settle into the gaps and reach the wall surface (3 layers: -0.009 h, mirroring: -0.04 h;
 // viscosity 0.01: 0.18 h). Their bounds: 0.1 h, and -0.25 h (half way to the first layer).
 INSTANTIATE_TEST_SUITE_P(Sampling, TankAtRest,
-                         ::testing::Values(TankCase{"sparse_wall_1_5h", 0.03, -0.25}, TankCase{"dense_wall_0_5h", 0.01, 0.1}),
+                         ::testing::Values(TankCase{"sparse_wall_1_5h", 0.03, -0.25},
+                                           TankCase{"dense_wall_0_5h", 0.01, 0.1}),
                          [](const ::testing::TestParamInfo<TankCase>& param_info) { return param_info.param.name; });
 
 }  // namespace

@@ -18,7 +18,8 @@ namespace {
 const std::string kFile = "scenes/x.json";
 
 // A valid scene around `extra` top-level members (each ending with a comma).
-std::string scene_with(const std::string& extra, const std::string& fluid = R"([{"shape": "rectangle", "min": [0, 0], "max": [1, 1]}])") {
+std::string scene_with(const std::string& extra,
+                       const std::string& fluid = R"([{"shape": "rectangle", "min": [0, 0], "max": [1, 1]}])") {
   return "{" + extra + R"("spacing": 0.1, "fluid": )" + fluid + "}";
 }
 
@@ -110,8 +111,9 @@ TEST(SceneFiles, ResolvedHasEveryDefault) {
   EXPECT_EQ(s.name, "tiny");
   EXPECT_EQ(s.output.directory, "renders/tiny");
   const auto& r = s.resolved;
-  for (const char* k : {"type", "rest_density", "gravity", "viscosity", "tolerance", "omega", "min_iterations",
-                        "max_iterations", "pressure_init", "stiffness", "boundary_pressure", "gamma1", "gamma2", "gamma3"})
+  for (const char* k :
+       {"type", "rest_density", "gravity", "viscosity", "tolerance", "omega", "min_iterations", "max_iterations",
+        "pressure_init", "stiffness", "boundary_pressure", "gamma1", "gamma2", "gamma3"})
     EXPECT_TRUE(r["solver"].contains(k)) << k;
   for (const char* k : {"duration", "fps", "dt", "cfl", "dt_max", "dt_min"}) EXPECT_TRUE(r["time"].contains(k)) << k;
   EXPECT_TRUE(r["time"]["dt"].is_null());  // adaptive
@@ -135,8 +137,10 @@ TEST(SceneFiles, ResolvedHasEveryDefault) {
 }
 
 TEST(SceneFiles, RenderSection) {
-  const Scene s = parse_scene(scene_with(R"("render": {"resolution": [640, 360], "color_by": "pressure", "colormap": "viridis",
-      "range": [0, 5000], "view": {"min": [-0.5, 0], "max": [1.5, 1]}},)"), "scenes/r.json");
+  const Scene s =
+      parse_scene(scene_with(R"("render": {"resolution": [640, 360], "color_by": "pressure", "colormap": "viridis",
+      "range": [0, 5000], "view": {"min": [-0.5, 0], "max": [1.5, 1]}},)"),
+                  "scenes/r.json");
   EXPECT_EQ(s.render.width, 640);
   EXPECT_EQ(s.render.height, 360);
   EXPECT_EQ(s.render.color_by, "pressure");
@@ -161,93 +165,146 @@ struct BadCase {
 TEST(SceneErrors, BadInputsNameFilePathAndAllowed) {
   const std::string box = R"("boundaries": [{"shape": "box", "min": [0, 0], "max": [4, 4]}],)";
   const std::vector<BadCase> cases = {
-      {"malformed JSON", "{\n  \"spacing\": 0.01,\n  \"fluid\": [\n    {\"shape\": \"rectangle\", \"min\": [0, 0] \"max\": [1, 1]}\n  ]\n}",
+      {"malformed JSON",
+       "{\n  \"spacing\": 0.01,\n  \"fluid\": [\n    {\"shape\": \"rectangle\", \"min\": [0, 0] \"max\": [1, 1]}\n  "
+       "]\n}",
        {"scenes/x.json:4:42: JSON parse error: ", "unexpected string literal"}},
-      {"bad literal", "{\"spacing\": 0.01,\n\"fluid\": [],\n\"x\": tru }", {"scenes/x.json:3:9: JSON parse error: ", "invalid literal"}},
-      {"unknown top-level key", scene_with(R"("fluids": 1,)"),
-       {"scenes/x.json:1:12: /fluids: unknown key; allowed keys: name, spacing, solver, time, stability, output, render, fluid, boundaries"}},
-      {"unknown nested key", scene_with(R"("solver": {"tolernce": 0.05},)"),
-       {"scenes/x.json:1:25: /solver/tolernce: unknown key; allowed keys: type, rest_density, gravity, viscosity, artificial_viscosity, sound_speed, gradient_correction, tolerance,"}},
-      {"unknown boundary key", scene_with(R"("boundaries": [{"shape": "circle", "center": [0, 0], "radius": 1, "lid": true}],)"),
-       {"/boundaries/0/lid: unknown key; allowed keys: shape, name, center, radius, spacing, fluid_side, layers, layer_spacing"}},
-      {"wrong type vec2", scene_with("", R"([{"shape": "rectangle", "min": "abc", "max": [1, 1]}])"),
+      {"bad literal",
+       "{\"spacing\": 0.01,\n\"fluid\": [],\n\"x\": tru }",
+       {"scenes/x.json:3:9: JSON parse error: ", "invalid literal"}},
+      {"unknown top-level key",
+       scene_with(R"("fluids": 1,)"),
+       {"scenes/x.json:1:12: /fluids: unknown key; allowed keys: name, spacing, solver, time, stability, output, "
+        "render, fluid, boundaries"}},
+      {"unknown nested key",
+       scene_with(R"("solver": {"tolernce": 0.05},)"),
+       {"scenes/x.json:1:25: /solver/tolernce: unknown key; allowed keys: type, rest_density, gravity, viscosity, "
+        "artificial_viscosity, sound_speed, gradient_correction, tolerance,"}},
+      {"unknown boundary key",
+       scene_with(R"("boundaries": [{"shape": "circle", "center": [0, 0], "radius": 1, "lid": true}],)"),
+       {"/boundaries/0/lid: unknown key; allowed keys: shape, name, center, radius, spacing, fluid_side, layers, "
+        "layer_spacing"}},
+      {"wrong type vec2",
+       scene_with("", R"([{"shape": "rectangle", "min": "abc", "max": [1, 1]}])"),
        {R"(scenes/x.json:1:58: /fluid/0/min: expected an array of 2 numbers, got "abc")"}},
-      {"float for int", scene_with(R"("solver": {"max_iterations": 10.5},)"),
+      {"float for int",
+       scene_with(R"("solver": {"max_iterations": 10.5},)"),
        {"/solver/max_iterations: expected an integer, got 10.5"}},
-      {"float for layers", scene_with(R"("boundaries": [{"shape": "box", "min": [0, 0], "max": [4, 4], "layers": 2.0}],)"),
+      {"float for layers",
+       scene_with(R"("boundaries": [{"shape": "box", "min": [0, 0], "max": [4, 4], "layers": 2.0}],)"),
        {"/boundaries/0/layers: expected an integer, got 2.0"}},
       {"string for number", scene_with(R"("time": {"fps": "30"},)"), {R"(/time/fps: expected a number, got "30")"}},
-      {"negative spacing", R"({"spacing": -0.01, "fluid": []})", {"/spacing: value -0.01 is out of range; must be > 0 [m]"}},
+      {"negative spacing",
+       R"({"spacing": -0.01, "fluid": []})",
+       {"/spacing: value -0.01 is out of range; must be > 0 [m]"}},
       {"missing spacing", R"({"fluid": []})", {"/spacing: missing required key"}},
-      {"tolerance zero", scene_with(R"("solver": {"tolerance": 0},)"),
+      {"tolerance zero",
+       scene_with(R"("solver": {"tolerance": 0},)"),
        {"/solver/tolerance: value 0 is out of range; must be > 0 (percent)"}},
-      {"tolerance negative", scene_with(R"("solver": {"tolerance": -1},)"),
+      {"tolerance negative",
+       scene_with(R"("solver": {"tolerance": -1},)"),
        {"scenes/x.json:1:26: /solver/tolerance: value -1 is out of range; must be > 0 (percent)"}},
-      {"omega above 1", scene_with(R"("solver": {"omega": 1.5},)"), {"/solver/omega: value 1.5 is out of range; must be in (0, 1]"}},
-      {"dt and cfl", scene_with(R"("time": {"dt": 1e-3, "cfl": 0.4},)"),
+      {"omega above 1",
+       scene_with(R"("solver": {"omega": 1.5},)"),
+       {"/solver/omega: value 1.5 is out of range; must be in (0, 1]"}},
+      {"dt and cfl",
+       scene_with(R"("time": {"dt": 1e-3, "cfl": 0.4},)"),
        {"/time: both dt and cfl are given; remove \"cfl\"", "or \"dt\""}},
       {"cfl above 2", scene_with(R"("time": {"cfl": 3},)"), {"/time/cfl: value 3 is out of range; must be in (0, 2]"}},
-      {"dt_min above dt_max", scene_with(R"("time": {"dt_min": 1e-2},)"), {"/time/dt_min:", "need 0 < dt_min <= dt_max"}},
-      {"bad enum", scene_with(R"("solver": {"boundary_pressure": "mirror"},)"),
+      {"dt_min above dt_max",
+       scene_with(R"("time": {"dt_min": 1e-2},)"),
+       {"/time/dt_min:", "need 0 < dt_min <= dt_max"}},
+      {"bad enum",
+       scene_with(R"("solver": {"boundary_pressure": "mirror"},)"),
        {R"(/solver/boundary_pressure: invalid value "mirror"; must be one of: solved, extrapolation, mirroring, zero)"}},
-      {"bad solver type", scene_with(R"("solver": {"type": "pcisph"},)"), {"/solver/type:", "must be one of: iisph, wcsph"}},
-      {"bad fluid side", scene_with(R"("boundaries": [{"shape": "polyline", "points": [[0, 0], [1, 0]], "fluid_side": "inside"}],)"),
+      {"bad solver type",
+       scene_with(R"("solver": {"type": "pcisph"},)"),
+       {"/solver/type:", "must be one of: iisph, wcsph"}},
+      {"bad fluid side",
+       scene_with(R"("boundaries": [{"shape": "polyline", "points": [[0, 0], [1, 0]], "fluid_side": "inside"}],)"),
        {"/boundaries/0/fluid_side:", "must be one of: left, right"}},
-      {"bad shape", scene_with("", R"([{"shape": "square"}])"), {"/fluid/0/shape:", "must be one of: rectangle, ellipse, polygon"}},
+      {"bad shape",
+       scene_with("", R"([{"shape": "square"}])"),
+       {"/fluid/0/shape:", "must be one of: rectangle, ellipse, polygon"}},
       {"missing shape", scene_with("", R"([{"min": [0, 0]}])"), {"/fluid/0/shape: missing required key"}},
-      {"empty fluid array", scene_with("", "[]"), {"scenes/x.json:1:27: /fluid: the scene has no fluid particles (0 lattice points"}},
-      {"zero-area fluid", scene_with("", R"([{"shape": "rectangle", "min": [0, 0], "max": [1, 0]}])"),
+      {"empty fluid array",
+       scene_with("", "[]"),
+       {"scenes/x.json:1:27: /fluid: the scene has no fluid particles (0 lattice points"}},
+      {"zero-area fluid",
+       scene_with("", R"([{"shape": "rectangle", "min": [0, 0], "max": [1, 0]}])"),
        {"/fluid: the scene has no fluid particles (0 lattice points"}},
       {"fluid inside solid circle",
        scene_with(R"("boundaries": [{"shape": "circle", "center": [0.5, 0.5], "radius": 2}],)"),
-       {"scenes/x.json:1:98: /fluid: the scene has no fluid particles (100 lattice points, all removed inside boundaries)"}},
+       {"scenes/x.json:1:98: /fluid: the scene has no fluid particles (100 lattice points, all removed inside "
+        "boundaries)"}},
       {"fluid outside container",
        scene_with(R"("boundaries": [{"shape": "box", "min": [5, 5], "max": [6, 6], "lid": true}],)"),
        {"/fluid: the scene has no fluid particles (100 lattice points, all removed inside boundaries)"}},
-      {"bad export", scene_with(R"("output": {"export": ["csv", "png"]},)"),
+      {"bad export",
+       scene_with(R"("output": {"export": ["csv", "png"]},)"),
        {R"(/output/export/1: invalid value "png"; must be one of: csv, vtk)"}},
-      {"export not array", scene_with(R"("output": {"export": "csv"},)"), {"/output/export: expected an array", "csv, vtk"}},
-      {"min above max iterations", scene_with(R"("solver": {"min_iterations": 50, "max_iterations": 10},)"),
+      {"export not array",
+       scene_with(R"("output": {"export": "csv"},)"),
+       {"/output/export: expected an array", "csv, vtk"}},
+      {"min above max iterations",
+       scene_with(R"("solver": {"min_iterations": 50, "max_iterations": 10},)"),
        {"/solver/min_iterations: min_iterations 50 is larger than max_iterations 10",
         "need 1 <= min_iterations <= max_iterations <= 10000"}},
-      {"iterations out of range", scene_with(R"("solver": {"max_iterations": 0},)"),
+      {"iterations out of range",
+       scene_with(R"("solver": {"max_iterations": 0},)"),
        {"/solver/max_iterations: value 0 is out of range; must be an integer in [1, 10000]"}},
       {"duplicate key", scene_with(R"("solver": {"omega": 0.5, "omega": 0.7},)"), {"/solver/omega: duplicate key"}},
       {"solver not an object", scene_with(R"("solver": 3,)"), {"/solver: expected an object, got 3"}},
-      {"self-intersecting polygon", scene_with("", R"([{"shape": "polygon", "points": [[0, 0], [1, 1], [1, 0], [0, 1]]}])"),
+      {"self-intersecting polygon",
+       scene_with("", R"([{"shape": "polygon", "points": [[0, 0], [1, 1], [1, 0], [0, 1]]}])"),
        {"/fluid/0/points:", "simple polygon"}},
-      {"too few points", scene_with("", R"([{"shape": "polygon", "points": [[0, 0], [1, 1]]}])"),
+      {"too few points",
+       scene_with("", R"([{"shape": "polygon", "points": [[0, 0], [1, 1]]}])"),
        {"/fluid/0/points: expected an array of at least 3 points"}},
-      {"spacing array length", scene_with(R"("boundaries": [{"shape": "box", "min": [0, 0], "max": [4, 4], "spacing": [0.1, 0.1]}],)"),
+      {"spacing array length",
+       scene_with(R"("boundaries": [{"shape": "box", "min": [0, 0], "max": [4, 4], "spacing": [0.1, 0.1]}],)"),
        {"/boundaries/0/spacing: expected 4 spacings (one per segment: bottom, right, top, left), got 2"}},
-      {"spacing array on circle", scene_with(R"("boundaries": [{"shape": "circle", "center": [0, 0], "radius": 1, "spacing": [0.1]}],)"),
+      {"spacing array on circle",
+       scene_with(R"("boundaries": [{"shape": "circle", "center": [0, 0], "radius": 1, "spacing": [0.1]}],)"),
        {"/boundaries/0/spacing: expected a number, got [0.1]"}},
-      {"layers zero", scene_with(R"("boundaries": [{"shape": "box", "min": [0, 0], "max": [4, 4], "layers": 0}],)"),
+      {"layers zero",
+       scene_with(R"("boundaries": [{"shape": "box", "min": [0, 0], "max": [4, 4], "layers": 0}],)"),
        {"/boundaries/0/layers: value 0 is out of range; must be an integer in [1, 1000]"}},
       {"duplicate boundary name", scene_with(box + R"("boundaries": 1,)"), {"/boundaries: duplicate key"}},
-      {"box max below min", scene_with(R"("boundaries": [{"shape": "box", "min": [0, 0], "max": [4, 0]}],)"),
+      {"box max below min",
+       scene_with(R"("boundaries": [{"shape": "box", "min": [0, 0], "max": [4, 0]}],)"),
        {"/boundaries/0/max:", "must be above min"}},
-      {"render range reversed", scene_with(R"("render": {"range": [2, 1]},)"),
+      {"render range reversed",
+       scene_with(R"("render": {"range": [2, 1]},)"),
        {"/render/range: range [2,1] must be [lo, hi] with lo < hi"}},
-      {"render bad field", scene_with(R"("render": {"color_by": "velocity"},)"),
+      {"render bad field",
+       scene_with(R"("render": {"color_by": "velocity"},)"),
        {R"(/render/color_by: invalid value "velocity"; must be one of: cfl, speed, pressure, density_error)"}},
-      {"render bad colormap", scene_with(R"("render": {"colormap": "jet"},)"), {"/render/colormap:", "spectrum, viridis, turbo"}},
-      {"render odd resolution shape", scene_with(R"("render": {"resolution": "1280x720"},)"),
+      {"render bad colormap",
+       scene_with(R"("render": {"colormap": "jet"},)"),
+       {"/render/colormap:", "spectrum, viridis, turbo"}},
+      {"render odd resolution shape",
+       scene_with(R"("render": {"resolution": "1280x720"},)"),
        {R"(/render/resolution: expected [width, height] in pixels, got "1280x720")"}},
-      {"render resolution too small", scene_with(R"("render": {"resolution": [1, 720]},)"),
+      {"render resolution too small",
+       scene_with(R"("render": {"resolution": [1, 720]},)"),
        {"/render/resolution/0: value 1 is out of range; must be an integer in [2, 16384]"}},
-      {"render empty view", scene_with(R"("render": {"view": {"min": [0, 0], "max": [1, 0]}},)"),
+      {"render empty view",
+       scene_with(R"("render": {"view": {"min": [0, 0], "max": [1, 0]}},)"),
        {"/render/view/max:", "must be above min"}},
-      {"render view unknown key", scene_with(R"("render": {"view": {"min": [0, 0], "max": [1, 1], "zoom": 2}},)"),
+      {"render view unknown key",
+       scene_with(R"("render": {"view": {"min": [0, 0], "max": [1, 1], "zoom": 2}},)"),
        {"/render/view/zoom: unknown key; allowed keys: min, max"}},
-      {"huge lattice", R"({"spacing": 1e-6, "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [1, 1]}]})",
+      {"huge lattice",
+       R"({"spacing": 1e-6, "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [1, 1]}]})",
        {"/fluid/0: the fluid would have more than 20000000 lattice points"}},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.what);
     const std::string msg = error_of(c.text);
     EXPECT_NE(msg.find(kFile), std::string::npos) << msg;
-    for (const auto& e : c.expected) EXPECT_NE(msg.find(e), std::string::npos) << "message: " << msg << "\nexpected: " << e;
+    for (const auto& e : c.expected)
+      EXPECT_NE(msg.find(e), std::string::npos) << "message: " << msg << "\nexpected: " << e;
   }
 }
 
@@ -282,7 +339,8 @@ TEST(SceneErrors, ValueErrorsNameLineAndColumn) {
       "    {\"shape\": \"rectangle\", \"min\": [0, \"a\"], \"max\": [1, 1]}\n"
       "  ]\n"
       "}\n";
-  const std::string mirror = "/solver/boundary_pressure: invalid value \"mirror\"; must be one of: solved, extrapolation, mirroring, zero";
+  const std::string mirror =
+      "/solver/boundary_pressure: invalid value \"mirror\"; must be one of: solved, extrapolation, mirroring, zero";
   EXPECT_EQ(error_of(text), "scenes/x.json:6:18: /solver/tolerance: value -1 is out of range; must be > 0 (percent)");
   // A sibling set by an override leaves the value's position; numbers and strings are
   // found at their first character.
@@ -292,23 +350,28 @@ TEST(SceneErrors, ValueErrorsNameLineAndColumn) {
   EXPECT_EQ(error_of(text, {"solver.tolerance=1", "solver.boundary_pressure=zero", "time.fsp=null", "/time/fsp=1"}),
             "scenes/x.json: /time/fsp: unknown key; allowed keys: duration, fps, dt, cfl, dt_max, dt_min, settle");
   const std::vector<std::string> good_solver_time = {"solver.tolerance=1", "solver.boundary_pressure=zero", "time={}"};
-  EXPECT_EQ(error_of(text, good_solver_time), "scenes/x.json:10:35: /fluid/0/min: expected an array of 2 numbers, got [0,\"a\"]");
+  EXPECT_EQ(error_of(text, good_solver_time),
+            "scenes/x.json:10:35: /fluid/0/min: expected an array of 2 numbers, got [0,\"a\"]");
   // The value itself from an override: the message as without a file position.
   EXPECT_EQ(error_of(text, {"solver.tolerance=1", "solver.boundary_pressure=mirrors"}),
-            "scenes/x.json: /solver/boundary_pressure: invalid value \"mirrors\"; must be one of: solved, extrapolation, mirroring, zero");
+            "scenes/x.json: /solver/boundary_pressure: invalid value \"mirrors\"; must be one of: solved, "
+            "extrapolation, mirroring, zero");
   // A value holding one an override changed is not the file's either.
   std::vector<std::string> o = good_solver_time;
   o.push_back("fluid.0.max.0=2");
   EXPECT_EQ(error_of(text, o), "scenes/x.json:10:35: /fluid/0/min: expected an array of 2 numbers, got [0,\"a\"]");
   o.push_back("fluid.0.min.1=-1");
   o.push_back("fluid.0.max=[1,-2]");
-  EXPECT_EQ(error_of(text, o).rfind("scenes/x.json: /fluid/0/max: max [1, -2] is below min [0, -1]", 0), 0u) << error_of(text, o);
+  EXPECT_EQ(error_of(text, o).rfind("scenes/x.json: /fluid/0/max: max [1, -2] is below min [0, -1]", 0), 0u)
+      << error_of(text, o);
   // A missing key has no position.
-  EXPECT_EQ(error_of("{\n  \"fluid\": []\n}"), "scenes/x.json: /spacing: missing required key; the fluid particle spacing in m, a number > 0");
+  EXPECT_EQ(error_of("{\n  \"fluid\": []\n}"),
+            "scenes/x.json: /spacing: missing required key; the fluid particle spacing in m, a number > 0");
   // A container's position is its opening bracket; a string's its opening quote, escapes
   // and all; a duplicate key's the second value.
   EXPECT_EQ(error_of("{\"spacing\": 0.1,\n \"fluid\":\n   [ ]}"),
-            "scenes/x.json:3:4: /fluid: the scene has no fluid particles (0 lattice points: the fluid blocks are empty or have no area at this spacing)");
+            "scenes/x.json:3:4: /fluid: the scene has no fluid particles (0 lattice points: the fluid blocks are empty "
+            "or have no area at this spacing)");
   EXPECT_EQ(error_of(scene_with(R"("name": "a\"\\/b",)")).substr(0, 27), "scenes/x.json:1:10: /name: ");
   EXPECT_EQ(error_of("{\"spacing\": 0.1,\n\"spacing\":  0.2, \"fluid\": []}"),
             "scenes/x.json:2:13: /spacing: duplicate key; each key may appear only once");
@@ -318,8 +381,9 @@ TEST(SceneErrors, ValueErrorsNameLineAndColumn) {
 
 TEST(SceneOverrides, ChangeValues) {
   const std::string text = scene_with("");
-  const Scene s = parse_scene(text, kFile, {"solver.tolerance=0.05", "/solver/type=wcsph", "fluid.0.max=[2,1]",
-                                            "time.dt=1e-3", "output.export=[\"vtk\"]", "name=\"renamed\""});
+  const Scene s = parse_scene(text, kFile,
+                              {"solver.tolerance=0.05", "/solver/type=wcsph", "fluid.0.max=[2,1]", "time.dt=1e-3",
+                               "output.export=[\"vtk\"]", "name=\"renamed\""});
   EXPECT_EQ(s.solver.tolerance_percent, 0.05);
   EXPECT_EQ(s.solver.type, SolverType::WCSPH);
   EXPECT_EQ(s.fluid_x.size(), 200u);
@@ -347,9 +411,12 @@ TEST(SceneOverrides, Errors) {
   EXPECT_NE(msg.find("--set solver..x=1: empty path component"), std::string::npos) << msg;
   msg = error_of(text, {"spacing.x=1"});
   EXPECT_NE(msg.find("--set spacing.x=1: the path goes through /spacing, which is 0.1, not an object or array"),
-            std::string::npos) << msg;
+            std::string::npos)
+      << msg;
   msg = error_of(text, {"fluid.3.max=[1,1]"});
-  EXPECT_NE(msg.find("--set fluid.3.max=[1,1]: \"3\" is not an index of the array at /fluid (size 1"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("--set fluid.3.max=[1,1]: \"3\" is not an index of the array at /fluid (size 1"),
+            std::string::npos)
+      << msg;
   msg = error_of(text, {"fluid.x=1"});
   EXPECT_NE(msg.find("--set fluid.x=1: \"x\" is not an index of the array at /fluid"), std::string::npos) << msg;
   msg = error_of(text, {"solver.omega=2"});
@@ -359,13 +426,15 @@ TEST(SceneOverrides, Errors) {
 // --- sampling ---------------------------------------------------------------------------------
 
 TEST(SceneSampling, PolylinePerSegmentSpacing) {
-  const Scene s = parse_scene(scene_with(
-      R"("boundaries": [{"surface_offset": 0, "shape": "polyline", "points": [[0, 3], [1, 3], [1, 4]], "spacing": [0.1, 0.25], "layers": 1}],)"), kFile);
+  const Scene s = parse_scene(
+      scene_with(
+          R"("boundaries": [{"surface_offset": 0, "shape": "polyline", "points": [[0, 3], [1, 3], [1, 4]], "spacing": [0.1, 0.25], "layers": 1}],)"),
+      kFile);
   const auto b = samples_of(s, 0);
   std::size_t first = 0, second = 0;
   for (const Vec2& p : b) {
-    if (std::abs(p.y() - 3) < 1e-12 && p.x() < 1 - 1e-12) ++first;   // segment 0 without its end corner
-    if (std::abs(p.x() - 1) < 1e-12) ++second;                        // segment 1 with both corners
+    if (std::abs(p.y() - 3) < 1e-12 && p.x() < 1 - 1e-12) ++first;  // segment 0 without its end corner
+    if (std::abs(p.x() - 1) < 1e-12) ++second;                      // segment 1 with both corners
   }
   EXPECT_EQ(first, 10u);
   EXPECT_EQ(second, 5u);
@@ -376,8 +445,10 @@ TEST(SceneSampling, PolylinePerSegmentSpacing) {
 
 TEST(SceneSampling, NonUniformSpacingRounds) {
   // A 1 m segment with spacing 0.3 gets round(3.33) = 3 intervals of 1/3 m.
-  const Scene s = parse_scene(scene_with(
-      R"("boundaries": [{"surface_offset": 0, "shape": "polyline", "points": [[0, 3], [1, 3]], "spacing": 0.3, "layers": 1}],)"), kFile);
+  const Scene s = parse_scene(
+      scene_with(
+          R"("boundaries": [{"surface_offset": 0, "shape": "polyline", "points": [[0, 3], [1, 3]], "spacing": 0.3, "layers": 1}],)"),
+      kFile);
   const auto b = samples_of(s, 0);
   ASSERT_EQ(b.size(), 4u);
   EXPECT_NEAR(b[1].x(), 1.0 / 3.0, 1e-12);
@@ -385,8 +456,10 @@ TEST(SceneSampling, NonUniformSpacingRounds) {
 }
 
 TEST(SceneSampling, BoxWithLidIsClosedLoop) {
-  const Scene s = parse_scene(scene_with(
-      R"("boundaries": [{"surface_offset": 0, "shape": "box", "min": [0, 0], "max": [1, 1], "lid": true, "layers": 2}],)"), kFile);
+  const Scene s = parse_scene(
+      scene_with(
+          R"("boundaries": [{"surface_offset": 0, "shape": "box", "min": [0, 0], "max": [1, 1], "lid": true, "layers": 2}],)"),
+      kFile);
   const auto b = samples_of(s, 0);
   EXPECT_EQ(b.size(), 40u + 48u);  // layer 0: 4 x 10; layer 1: 4 x 12 around [-0.1, 1.1]^2
   EXPECT_GT(min_pair_distance(b), 1e-9);
@@ -409,7 +482,8 @@ TEST(SceneSampling, BoxWithLidIsClosedLoop) {
 // A box obstacle (fluid_side outside) is closed unless told otherwise: without its top it
 // would be a cup inside the fluid that fills with water.
 TEST(SceneSampling, BoxObstacleIsClosedByDefault) {
-  const std::string obstacle = R"({"surface_offset": 0, "shape": "box", "min": [1, 1], "max": [2, 2], "layers": 1, "fluid_side": "outside")";
+  const std::string obstacle =
+      R"({"surface_offset": 0, "shape": "box", "min": [1, 1], "max": [2, 2], "layers": 1, "fluid_side": "outside")";
   const Scene closed = parse_scene(scene_with(R"("boundaries": [)" + obstacle + "}],"), kFile);
   const Scene open = parse_scene(scene_with(R"("boundaries": [)" + obstacle + R"(, "lid": false}],)"), kFile);
   auto top_samples = [](const Scene& s) {
@@ -419,41 +493,54 @@ TEST(SceneSampling, BoxObstacleIsClosedByDefault) {
   };
   EXPECT_GT(top_samples(closed), 0u);
   EXPECT_EQ(top_samples(open), 0u);
-  EXPECT_EQ(parse_scene(scene_with(R"("boundaries": [{"shape": "box", "min": [0, 0], "max": [4, 4]}],)"), kFile).objects[0].geometry.lid,
+  EXPECT_EQ(parse_scene(scene_with(R"("boundaries": [{"shape": "box", "min": [0, 0], "max": [4, 4]}],)"), kFile)
+                .objects[0]
+                .geometry.lid,
             false);  // a container stays open at the top
 }
 
 TEST(SceneSampling, BoxSpacingPerWall) {
-  const Scene s = parse_scene(scene_with(
-      R"("boundaries": [{"surface_offset": 0, "shape": "box", "min": [0, 0], "max": [1, 2], "lid": true, "layers": 1, "spacing": [0.1, 0.5, 0.25, 1]}],)"), kFile);
+  const Scene s = parse_scene(
+      scene_with(
+          R"("boundaries": [{"surface_offset": 0, "shape": "box", "min": [0, 0], "max": [1, 2], "lid": true, "layers": 1, "spacing": [0.1, 0.5, 0.25, 1]}],)"),
+      kFile);
   // bottom 10 + right 4 + top 4 + left 2 intervals, corners once
   EXPECT_EQ(samples_of(s, 0).size(), 20u);
-  const Scene open = parse_scene(scene_with(
-      R"("boundaries": [{"surface_offset": 0, "shape": "box", "min": [0, 0], "max": [1, 2], "layers": 1, "spacing": [0.1, 0.5, 0.25, 1]}],)"), kFile);
+  const Scene open = parse_scene(
+      scene_with(
+          R"("boundaries": [{"surface_offset": 0, "shape": "box", "min": [0, 0], "max": [1, 2], "layers": 1, "spacing": [0.1, 0.5, 0.25, 1]}],)"),
+      kFile);
   EXPECT_EQ(samples_of(open, 0).size(), 2u + 10u + 4u + 1u);  // left, bottom, right, top-right corner
 }
 
 TEST(SceneSampling, LayersGoAwayFromFluid) {
   auto layer1_y = [](const std::string& side) {
-    const Scene s = parse_scene(scene_with(R"("boundaries": [{"surface_offset": 0, "shape": "polyline", "points": [[0, 3], [1, 3]], "fluid_side": ")" +
-                                           side + R"(", "layer_spacing": 0.05}],)"), kFile);
+    const Scene s = parse_scene(
+        scene_with(
+            R"("boundaries": [{"surface_offset": 0, "shape": "polyline", "points": [[0, 3], [1, 3]], "fluid_side": ")" +
+            side + R"(", "layer_spacing": 0.05}],)"),
+        kFile);
     const auto b = samples_of(s, 0);
     return b.back().y();
   };
-  EXPECT_NEAR(layer1_y("left"), 3 - 0.05, 1e-12);   // fluid above a left-to-right wall
+  EXPECT_NEAR(layer1_y("left"), 3 - 0.05, 1e-12);  // fluid above a left-to-right wall
   EXPECT_NEAR(layer1_y("right"), 3 + 0.05, 1e-12);
 
   // Polygon obstacle (default fluid outside): layers inward for both orientations.
   for (const char* pts : {"[[3, 3], [4, 3], [4, 4], [3, 4]]", "[[3, 3], [3, 4], [4, 4], [4, 3]]"}) {
     SCOPED_TRACE(pts);
-    const Scene s = parse_scene(scene_with(R"("boundaries": [{"surface_offset": 0, "shape": "polygon", "points": )" + std::string(pts) + "}],"), kFile);
+    const Scene s = parse_scene(
+        scene_with(R"("boundaries": [{"surface_offset": 0, "shape": "polygon", "points": )" + std::string(pts) + "}],"),
+        kFile);
     for (const Vec2& p : samples_of(s, 0)) {
       const double linf = std::max(std::abs(p.x() - 3.5), std::abs(p.y() - 3.5));
       EXPECT_TRUE(std::abs(linf - 0.5) < 1e-12 || std::abs(linf - 0.4) < 1e-12) << p.transpose();
     }
-    const Scene c = parse_scene(scene_with(R"("boundaries": [{"surface_offset": 0, "shape": "polygon", "fluid_side": "inside", "points": )" +
-                                           std::string(pts) + "}],", R"([{"shape": "rectangle", "min": [3, 3], "max": [4, 4]}])"),
-                                kFile);
+    const Scene c = parse_scene(
+        scene_with(R"("boundaries": [{"surface_offset": 0, "shape": "polygon", "fluid_side": "inside", "points": )" +
+                       std::string(pts) + "}],",
+                   R"([{"shape": "rectangle", "min": [3, 3], "max": [4, 4]}])"),
+        kFile);
     for (const Vec2& p : samples_of(c, 0)) {
       const double linf = std::max(std::abs(p.x() - 3.5), std::abs(p.y() - 3.5));
       EXPECT_TRUE(std::abs(linf - 0.5) < 1e-12 || std::abs(linf - 0.6) < 1e-12) << p.transpose();
@@ -464,11 +551,13 @@ TEST(SceneSampling, LayersGoAwayFromFluid) {
   // Circle: obstacle layers inside, container layers outside.
   for (const char* side : {"outside", "inside"}) {
     SCOPED_TRACE(side);
-    const Scene s = parse_scene(scene_with(R"("boundaries": [{"surface_offset": 0, "shape": "circle", "center": [5, 5], "radius": 0.5, "layers": 3, "fluid_side": ")" +
-                                           std::string(side) + "\"}],",
-                                           std::string(side) == "inside" ? R"([{"shape": "rectangle", "min": [4.8, 4.8], "max": [5.2, 5.2]}])"
-                                                                         : R"([{"shape": "rectangle", "min": [0, 0], "max": [1, 1]}])"),
-                                 kFile);
+    const Scene s = parse_scene(
+        scene_with(
+            R"("boundaries": [{"surface_offset": 0, "shape": "circle", "center": [5, 5], "radius": 0.5, "layers": 3, "fluid_side": ")" +
+                std::string(side) + "\"}],",
+            std::string(side) == "inside" ? R"([{"shape": "rectangle", "min": [4.8, 4.8], "max": [5.2, 5.2]}])"
+                                          : R"([{"shape": "rectangle", "min": [0, 0], "max": [1, 1]}])"),
+        kFile);
     const double sign = std::string(side) == "outside" ? -1 : 1;
     std::vector<std::size_t> per_layer(3, 0);
     for (const Vec2& p : samples_of(s, 0)) {
@@ -484,8 +573,10 @@ TEST(SceneSampling, LayersGoAwayFromFluid) {
 }
 
 TEST(SceneSampling, EllipseUniformArcLength) {
-  const Scene s = parse_scene(scene_with(
-      R"("boundaries": [{"surface_offset": 0, "shape": "ellipse", "center": [5, 5], "radii": [1, 0.25], "layers": 1, "spacing": 0.05}],)"), kFile);
+  const Scene s = parse_scene(
+      scene_with(
+          R"("boundaries": [{"surface_offset": 0, "shape": "ellipse", "center": [5, 5], "radii": [1, 0.25], "layers": 1, "spacing": 0.05}],)"),
+      kFile);
   const auto b = samples_of(s, 0);
   ASSERT_GT(b.size(), 50u);
   double lo = INFINITY, hi = 0;
@@ -500,8 +591,10 @@ TEST(SceneSampling, EllipseUniformArcLength) {
 }
 
 TEST(SceneSampling, ObjectsAreContiguous) {
-  const Scene s = parse_scene(scene_with(
-      R"("boundaries": [{"shape": "box", "min": [-1, -1], "max": [4, 4]}, {"shape": "circle", "name": "rock", "center": [2, 2], "radius": 0.3}],)"), kFile);
+  const Scene s = parse_scene(
+      scene_with(
+          R"("boundaries": [{"shape": "box", "min": [-1, -1], "max": [4, 4]}, {"shape": "circle", "name": "rock", "center": [2, 2], "radius": 0.3}],)"),
+      kFile);
   ASSERT_EQ(s.objects.size(), 2u);
   EXPECT_EQ(s.objects[0].name, "box0");
   EXPECT_EQ(s.objects[1].name, "rock");
@@ -518,8 +611,10 @@ TEST(SceneSampling, ObjectsAreContiguous) {
 TEST(SceneFluid, CircleObstacleRemovesInside) {
   const double h = 0.01, r = 0.2;
   const Vec2 c(0.5, 0.5);
-  const Scene s = parse_scene(R"({"spacing": 0.01, "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [1, 1], "velocity": [1, 2]}],
-      "boundaries": [{"shape": "circle", "center": [0.5, 0.5], "radius": 0.2}]})", kFile);
+  const Scene s = parse_scene(
+      R"({"spacing": 0.01, "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [1, 1], "velocity": [1, 2]}],
+      "boundaries": [{"shape": "circle", "center": [0.5, 0.5], "radius": 0.2}]})",
+      kFile);
   // Removed: inside the circle or within half a spacing of it (no lattice point is near that edge).
   std::size_t expected = 0;
   for (int j = 0; j < 100; ++j)
@@ -546,11 +641,13 @@ TEST(SceneFluid, KeepsParticlesHalfASpacingFromWalls) {
   EXPECT_EQ(kept.fluid_x.size(), 20000u);
   EXPECT_EQ(kept.fluid_removed, 0);
   // Shifted left by 1e-4: the first column is 0.49 h from the wall and goes.
-  const Scene shifted = parse_scene("{" + tank + R"("spacing": 0.01, "fluid": )" + fluid("[-0.0001, 0]", "[0.9999, 2]") + "}", kFile);
+  const Scene shifted =
+      parse_scene("{" + tank + R"("spacing": 0.01, "fluid": )" + fluid("[-0.0001, 0]", "[0.9999, 2]") + "}", kFile);
   EXPECT_EQ(shifted.fluid_removed, 200);
   EXPECT_EQ(shifted.fluid_x.size(), 19800u);
   // Fluid poking through the wall: what is behind the wall or within 0.5 h of it goes.
-  const Scene through = parse_scene("{" + tank + R"("spacing": 0.01, "fluid": )" + fluid("[-0.5, 0]", "[1, 2]") + "}", kFile);
+  const Scene through =
+      parse_scene("{" + tank + R"("spacing": 0.01, "fluid": )" + fluid("[-0.5, 0]", "[1, 2]") + "}", kFile);
   EXPECT_EQ(through.fluid_x.size(), 20000u);
   EXPECT_EQ(through.fluid_removed, 50 * 200);
 }
@@ -558,17 +655,21 @@ TEST(SceneFluid, KeepsParticlesHalfASpacingFromWalls) {
 TEST(SceneFluid, ShapesAndDuplicates) {
   // Two identical blocks merge into one; an overlapping shifted block adds only new points.
   const Scene twice = parse_scene(scene_with("", R"([{"shape": "rectangle", "min": [0, 0], "max": [1, 1]},
-      {"shape": "rectangle", "min": [0, 0], "max": [1, 1], "velocity": [5, 5]}])"), kFile);
+      {"shape": "rectangle", "min": [0, 0], "max": [1, 1], "velocity": [5, 5]}])"),
+                                  kFile);
   EXPECT_EQ(twice.fluid_x.size(), 100u);
   EXPECT_EQ(twice.fluid_v[0], Vec2(0, 0));  // the first block wins
   const Scene shifted = parse_scene(scene_with("", R"([{"shape": "rectangle", "min": [0, 0], "max": [1, 1]},
-      {"shape": "rectangle", "min": [0.5, 0], "max": [1.5, 1]}])"), kFile);
+      {"shape": "rectangle", "min": [0.5, 0], "max": [1.5, 1]}])"),
+                                    kFile);
   EXPECT_EQ(shifted.fluid_x.size(), 150u);
 
   // Ellipse and polygon: lattice aligned to the bounding box, points inside kept.
-  const Scene ellipse = parse_scene(R"({"spacing": 0.01, "fluid": [{"shape": "ellipse", "center": [0, 0], "radii": [1, 0.5]}]})", kFile);
+  const Scene ellipse =
+      parse_scene(R"({"spacing": 0.01, "fluid": [{"shape": "ellipse", "center": [0, 0], "radii": [1, 0.5]}]})", kFile);
   EXPECT_NEAR(static_cast<double>(ellipse.fluid_x.size()) * 1e-4, std::numbers::pi * 0.5, 0.01);
-  const Scene triangle = parse_scene(R"({"spacing": 0.01, "fluid": [{"shape": "polygon", "points": [[0, 0], [1, 0], [0, 1]]}]})", kFile);
+  const Scene triangle =
+      parse_scene(R"({"spacing": 0.01, "fluid": [{"shape": "polygon", "points": [[0, 0], [1, 0], [0, 1]]}]})", kFile);
   EXPECT_NEAR(static_cast<double>(triangle.fluid_x.size()) * 1e-4, 0.5, 0.01);
   for (const Vec2& p : triangle.fluid_x) EXPECT_LE(p.x() + p.y(), 1.0 + 1e-12);
 }
@@ -605,8 +706,10 @@ namespace {
 // Fluid closer than 0.9 spacings to a boundary sample would start compressed: it is
 // removed and counted, and what stays keeps that distance from every sample.
 TEST(SceneSampling, FluidNearSamplesIsRemovedAndCounted) {
-  const Scene s = parse_scene(scene_with(
-      R"("boundaries": [{"shape": "circle", "center": [0.5, 0.5], "radius": 0.23, "surface_offset": 0, "layers": 1}],)"), kFile);
+  const Scene s = parse_scene(
+      scene_with(
+          R"("boundaries": [{"shape": "circle", "center": [0.5, 0.5], "radius": 0.23, "surface_offset": 0, "layers": 1}],)"),
+      kFile);
   EXPECT_GT(s.fluid_near_samples, 0);
   EXPECT_LE(s.fluid_near_samples, s.fluid_removed);
   double closest = std::numeric_limits<double>::infinity();

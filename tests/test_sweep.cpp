@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "io/csv.h"
 #include "analysis/sweep.h"
+#include "io/csv.h"
 #include "temp_dir.h"
 #include "test_util.h"
 
@@ -22,8 +22,7 @@ TEST(Sweep, ParsesAxes) {
 }
 
 TEST(Sweep, CombinationsFirstAxisSlowest) {
-  const auto c = analysis::sweep_combinations(
-      {analysis::parse_sweep("a=1,2"), analysis::parse_sweep("b=x,y,z")});
+  const auto c = analysis::sweep_combinations({analysis::parse_sweep("a=1,2"), analysis::parse_sweep("b=x,y,z")});
   ASSERT_EQ(c.size(), 6u);
   EXPECT_EQ(c[0], (std::vector<std::string>{"a=1", "b=x"}));
   EXPECT_EQ(c[2], (std::vector<std::string>{"a=1", "b=z"}));
@@ -41,8 +40,8 @@ analysis::SweepRun point(double wall, double error, bool stable = true) {
 }
 
 TEST(Sweep, ParetoFront) {
-  std::vector<analysis::SweepRun> runs{point(1, 0.5), point(2, 0.1), point(3, 0.2), point(2, 0.1),
-                                       point(0.5, 0.01, false), point(4, 0.05)};
+  std::vector<analysis::SweepRun> runs{point(1, 0.5), point(2, 0.1),           point(3, 0.2),
+                                       point(2, 0.1), point(0.5, 0.01, false), point(4, 0.05)};
   analysis::mark_pareto_front(runs);
   EXPECT_TRUE(runs[0].pareto);   // fastest stable run
   EXPECT_TRUE(runs[1].pareto);   // ties with run 4: neither is better in one and not worse in the other

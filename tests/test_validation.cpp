@@ -31,9 +31,12 @@ TEST(Validation, MartinMoyceDataIsMonotone) {
 }
 
 void check_front(const analysis::DamBreakResult& r, double bound, const char* solver) {
-  std::printf("[ measured ] dam break %s: a = %.3f m, n^2 = %.2f, %zu points, RMS relative error %.4f, %ld steps, %.1f s\n",
-              solver, r.a, r.height / r.a, r.compared.size(), r.rms_relative_error, r.steps, r.wall_seconds);
-  for (const auto& p : r.compared) std::printf("  T %.3f  Z exp %.3f  sim %.3f  (%+.1f %%)\n", p.T, p.Z_experiment, p.Z_simulated, 100 * p.relative_error);
+  std::printf(
+      "[ measured ] dam break %s: a = %.3f m, n^2 = %.2f, %zu points, RMS relative error %.4f, %ld steps, %.1f s\n",
+      solver, r.a, r.height / r.a, r.compared.size(), r.rms_relative_error, r.steps, r.wall_seconds);
+  for (const auto& p : r.compared)
+    std::printf("  T %.3f  Z exp %.3f  sim %.3f  (%+.1f %%)\n", p.T, p.Z_experiment, p.Z_simulated,
+                100 * p.relative_error);
   EXPECT_NEAR(r.a, 1.0, 1e-9);
   EXPECT_NEAR(r.height / r.a, 2.0, 1e-9);
   // The channel is long enough for every measured point.

@@ -97,7 +97,8 @@ Moments moments(const std::vector<Vec2>& x) {
 
 EllipticalDropResult run_elliptical_drop(const Scene& scene, double A0) {
   if (scene.fluid_x.empty()) throw SceneError(scene.file + ": /fluid: the elliptical drop needs a fluid drop");
-  if (!(A0 > 0)) throw SceneError(scene.file + ": the elliptical drop needs a strain rate A0 > 0, got " + std::to_string(A0));
+  if (!(A0 > 0))
+    throw SceneError(scene.file + ": the elliptical drop needs a strain rate A0 > 0, got " + std::to_string(A0));
   EllipticalDropResult r;
   r.A0 = A0;
   r.h = scene.spacing;

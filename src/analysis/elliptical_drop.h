@@ -44,13 +44,13 @@ struct EllipseSample {
 };
 
 struct EllipticalDropResult {
-  double A0 = 0;        // initial strain rate [1/s]
-  double R0 = 0;        // drop radius: the area-equivalent sqrt(N h^2 / pi) [m]
-  double h = 0;         // spacing [m]
+  double A0 = 0;  // initial strain rate [1/s]
+  double R0 = 0;  // drop radius: the area-equivalent sqrt(N h^2 / pi) [m]
+  double h = 0;   // spacing [m]
   long particles = 0, steps = 0;
   double avg_iterations = 0, wall_seconds = 0;
-  double max_speed_end = 0;             // [m/s]
-  std::vector<EllipseSample> series;    // t = 0 and every frame time
+  double max_speed_end = 0;           // [m/s]
+  std::vector<EllipseSample> series;  // t = 0 and every frame time
   // At the end time: |a_sim - a_ode| / a_ode, the same for b, and the larger of the two.
   double a_error = 0, b_error = 0, error = 0;
 };

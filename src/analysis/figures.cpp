@@ -89,11 +89,12 @@ std::string terminal(const FigureSpec& spec) {
     case FigureFormat::Png:
       return "set terminal pngcairo size " + size + " enhanced font \"DejaVu Sans,20\" linewidth 2\n";
     case FigureFormat::Svg:
-      return "set terminal svg size " + size + " dynamic enhanced font \"DejaVu Sans,20\" linewidth 2 background \"white\"\n";
+      return "set terminal svg size " + size +
+             " dynamic enhanced font \"DejaVu Sans,20\" linewidth 2 background \"white\"\n";
     case FigureFormat::Pdf:
       // 1200 x 800 px -> 6 x 4 in: a column figure at 10 pt, like the PNG's 20 pt at 1200 px.
-      return "set terminal pdfcairo size " + short_num(spec.width / 200.0, 6) + "in," + short_num(spec.height / 200.0, 6) +
-             "in enhanced font \"DejaVu Sans,10\" linewidth 1.5\n";
+      return "set terminal pdfcairo size " + short_num(spec.width / 200.0, 6) + "in," +
+             short_num(spec.height / 200.0, 6) + "in enhanced font \"DejaVu Sans,10\" linewidth 1.5\n";
   }
   return "";
 }
@@ -110,7 +111,7 @@ std::string datablock(const std::string& name, const std::vector<std::vector<dou
 
 std::string series_plot(const FigureSpec& spec, const std::vector<FigureSeries>& series) {
   std::string s, plot;
-  const std::string with = spec.style == "points" ? "points pt 7 ps 1.2"
+  const std::string with = spec.style == "points"        ? "points pt 7 ps 1.2"
                            : spec.style == "linespoints" ? "linespoints pt 7 ps 1.2 lw 2"
                                                          : "lines lw 2";
   for (std::size_t i = 0; i < series.size(); ++i) {
@@ -122,8 +123,8 @@ std::string series_plot(const FigureSpec& spec, const std::vector<FigureSeries>&
       // The mean over the series' own x range: a shorter run's line ends where it ends.
       const auto [lo, hi] = std::minmax_element(f.x.begin(), f.x.end());
       s += datablock("m" + std::to_string(i), {{*lo, *hi}, {f.mean, f.mean}});
-      plot += ", \\\n     $m" + std::to_string(i) + " using 1:2 with lines dt 2 lw 2 lc rgb \"" + color(i) + "\" title " +
-              gnuplot_quote("mean " + short_num(f.mean, 4)) + " noenhanced";
+      plot += ", \\\n     $m" + std::to_string(i) + " using 1:2 with lines dt 2 lw 2 lc rgb \"" + color(i) +
+              "\" title " + gnuplot_quote("mean " + short_num(f.mean, 4)) + " noenhanced";
     }
   }
   return s + plot + "\n";
@@ -154,14 +155,16 @@ std::string box_plot(const std::vector<FigureSeries>& series) {
   std::string s = datablock("box", {pos, q1, lo, hi, q3, med, mean});
   if (!out_x.empty()) s += datablock("outliers", {out_x, out_y});
   // A label slanted by 30 degrees needs about a quarter of its length in character heights below the axis.
-  s += "set xtics (" + tics + ") noenhanced" + (slanted ? " rotate by 30 right" : "") + "\nset xrange [0.4:" +
-       num(static_cast<double>(series.size()) + 0.6) + "]\n" +
-       "set bmargin " + std::to_string(slanted ? 3 + static_cast<int>(static_cast<double>(longest) * 0.25) : 5) + "\n" +
+  s += "set xtics (" + tics + ") noenhanced" + (slanted ? " rotate by 30 right" : "") +
+       "\nset xrange [0.4:" + num(static_cast<double>(series.size()) + 0.6) + "]\n" + "set bmargin " +
+       std::to_string(slanted ? 3 + static_cast<int>(static_cast<double>(longest) * 0.25) : 5) + "\n" +
        "set boxwidth 0.5\nset style fill solid 0.35 border -1\n"
-       "plot $box using 1:2:3:4:5 with candlesticks whiskerbars 0.5 lc rgb \"#1f77b4\" title \"quartiles, 1.5 IQR whiskers\", \\\n"
+       "plot $box using 1:2:3:4:5 with candlesticks whiskerbars 0.5 lc rgb \"#1f77b4\" title \"quartiles, 1.5 IQR "
+       "whiskers\", \\\n"
        "     $box using 1:6:6:6:6 with candlesticks lc rgb \"black\" lw 2 notitle, \\\n"
        "     $box using 1:7 with points pt 7 ps 1.6 lc rgb \"black\" title \"mean\"";
-  if (!out_x.empty()) s += ", \\\n     $outliers using 1:2 with points pt 6 ps 0.8 lc rgb \"#7f7f7f\" title \"outliers\"";
+  if (!out_x.empty())
+    s += ", \\\n     $outliers using 1:2 with points pt 6 ps 0.8 lc rgb \"#7f7f7f\" title \"outliers\"";
   return s + "\n";
 }
 
@@ -184,7 +187,8 @@ std::string scatter_plot(const FigureSpec& spec, const std::vector<FigureSeries>
     all_y.insert(all_y.end(), f.y.begin(), f.y.end());
   }
   std::vector<double> hx, hy;
-  for (const auto& f : series) hx.insert(hx.end(), f.hx.begin(), f.hx.end()), hy.insert(hy.end(), f.hy.begin(), f.hy.end());
+  for (const auto& f : series)
+    hx.insert(hx.end(), f.hx.begin(), f.hx.end()), hy.insert(hy.end(), f.hy.begin(), f.hy.end());
   if (!hx.empty()) {
     s += datablock("highlight", {hx, hy});
     plot += ", \\\n     $highlight using 1:2 with points pt 6 ps 3.2 lw 3 lc rgb \"#e31a1c\" title " +
@@ -198,7 +202,8 @@ std::string scatter_plot(const FigureSpec& spec, const std::vector<FigureSeries>
     std::vector<double> px, py;
     for (std::size_t k : pareto_front(all_x, all_y)) px.push_back(all_x[k]), py.push_back(all_y[k]);
     s += datablock("pareto", {px, py});
-    plot += ", \\\n     $pareto using 1:2 with linespoints dt 2 lw 2 pt 6 ps 2.4 lc rgb \"black\" title \"Pareto front\"";
+    plot +=
+        ", \\\n     $pareto using 1:2 with linespoints dt 2 lw 2 pt 6 ps 2.4 lc rgb \"black\" title \"Pareto front\"";
   }
   return s + plot + "\n";
 }
@@ -248,7 +253,8 @@ std::vector<std::size_t> pareto_front(const std::vector<double>& x, const std::v
   for (std::size_t i = 0; i < x.size(); ++i)
     if (std::isfinite(x[i]) && std::isfinite(y[i])) idx.push_back(i);
   // By x, then y: a point is on the front when its y is below every y before it.
-  std::stable_sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return x[a] != x[b] ? x[a] < x[b] : y[a] < y[b]; });
+  std::stable_sort(idx.begin(), idx.end(),
+                   [&](std::size_t a, std::size_t b) { return x[a] != x[b] ? x[a] < x[b] : y[a] < y[b]; });
   std::vector<std::size_t> front;
   double best = HUGE_VAL;
   for (std::size_t i : idx)
@@ -307,8 +313,8 @@ std::string axis_label(const std::string& c) {
 std::vector<FigureSeries> figure_series(const FigureSpec& spec, const std::vector<CsvTable>& tables) {
   if (spec.y.empty()) throw InputError("--y: missing; name the column(s) to plot, e.g. --y iterations");
   if (!spec.labels.empty() && spec.labels.size() != spec.inputs.size())
-    throw InputError("--label: " + std::to_string(spec.labels.size()) + " given for " + std::to_string(spec.inputs.size()) +
-                     " inputs; give one per input or none");
+    throw InputError("--label: " + std::to_string(spec.labels.size()) + " given for " +
+                     std::to_string(spec.inputs.size()) + " inputs; give one per input or none");
   std::vector<FigureSeries> out;
   for (std::size_t i = 0; i < tables.size(); ++i) {
     const CsvTable& t = tables[i];
@@ -333,7 +339,8 @@ std::vector<FigureSeries> figure_series(const FigureSpec& spec, const std::vecto
         if (std::find(groups.begin(), groups.end(), g) == groups.end()) groups.push_back(g);
       }
     if (groups.empty())
-      throw InputError(t.path + ": no rows" + (spec.where.empty() ? "" : " match --where " + join(spec.where, " --where ")));
+      throw InputError(t.path + ": no rows" +
+                       (spec.where.empty() ? "" : " match --where " + join(spec.where, " --where ")));
     for (const auto& g : groups)
       for (std::size_t k = 0; k < yc.size(); ++k) {
         FigureSeries f;
@@ -369,8 +376,9 @@ std::vector<FigureSeries> figure_series(const FigureSpec& spec, const std::vecto
 }
 
 std::string figure_script(const FigureSpec& spec, const std::vector<FigureSeries>& series) {
-  std::string s = "# Written by `sluice figures`; the data is inline. Rerun: gnuplot " + fs::path(spec.output).stem().string() +
-                  ".gp\n" + terminal(spec) + "set output " + gnuplot_quote(fs::path(spec.output).filename().string()) +
+  std::string s = "# Written by `sluice figures`; the data is inline. Rerun: gnuplot " +
+                  fs::path(spec.output).stem().string() + ".gp\n" + terminal(spec) + "set output " +
+                  gnuplot_quote(fs::path(spec.output).filename().string()) +
                   "\nset grid lc rgb \"#dddddd\"\nset key top left box opaque\n";
   if (!spec.title.empty()) s += "set title " + gnuplot_quote(spec.title) + " noenhanced\n";
   const std::string xl = !spec.xlabel.empty() ? spec.xlabel : spec.kind == FigureKind::Box ? "" : axis_label(spec.x);
@@ -383,9 +391,12 @@ std::string figure_script(const FigureSpec& spec, const std::vector<FigureSeries
   // (the spikes at t = 0) or a box's outliers; beside it, it took a third of the width.
   s += "set key outside top center horizontal box opaque\n";
   switch (spec.kind) {
-    case FigureKind::Series: return s + series_plot(spec, series);
-    case FigureKind::Box: return s + box_plot(series);
-    case FigureKind::Scatter: return s + scatter_plot(spec, series);
+    case FigureKind::Series:
+      return s + series_plot(spec, series);
+    case FigureKind::Box:
+      return s + box_plot(series);
+    case FigureKind::Scatter:
+      return s + scatter_plot(spec, series);
   }
   return s;
 }
@@ -419,7 +430,8 @@ std::string markdown_table(const CsvTable& t, const std::vector<std::string>& co
     for (std::size_t i = 0; i < t.header.size(); ++i) cols.push_back(static_cast<int>(i));
   auto cell = [&](const std::string& f) {
     double v = 0;
-    std::string s = parse_number(f, v) && f.find_first_not_of("0123456789-") != std::string::npos ? short_num(v, digits) : f;
+    std::string s =
+        parse_number(f, v) && f.find_first_not_of("0123456789-") != std::string::npos ? short_num(v, digits) : f;
     std::string e;
     for (char ch : s) e += ch == '|' ? std::string("\\|") : std::string(1, ch);
     return e;

@@ -23,21 +23,21 @@ FigureFormat figure_format(const std::string& output);
 
 struct FigureSpec {
   FigureKind kind = FigureKind::Series;
-  std::vector<std::string> inputs;   // CSV files
-  std::vector<std::string> labels;   // one per input (default: the file's folder and name)
-  std::string x = "time";            // series/scatter
-  std::vector<std::string> y;        // one or more columns; each makes its own series
-  std::string group;                 // split each input's rows by this column's value
-  std::vector<std::string> where;    // keep only rows with COLUMN=VALUE (all must hold)
-  std::string color;                 // scatter: colour points by this column (palette)
-  bool mean = false;                 // series: a dashed line at each series' mean
-  bool pareto = false;               // scatter: the Pareto front (smaller x and y better)
-  std::string highlight;             // scatter: ring the rows with COLUMN=VALUE in red (e.g. best=1)
+  std::vector<std::string> inputs;  // CSV files
+  std::vector<std::string> labels;  // one per input (default: the file's folder and name)
+  std::string x = "time";           // series/scatter
+  std::vector<std::string> y;       // one or more columns; each makes its own series
+  std::string group;                // split each input's rows by this column's value
+  std::vector<std::string> where;   // keep only rows with COLUMN=VALUE (all must hold)
+  std::string color;                // scatter: colour points by this column (palette)
+  bool mean = false;                // series: a dashed line at each series' mean
+  bool pareto = false;              // scatter: the Pareto front (smaller x and y better)
+  std::string highlight;            // scatter: ring the rows with COLUMN=VALUE in red (e.g. best=1)
   bool logx = false, logy = false;
-  std::string style = "lines";       // series: lines, linespoints or points
-  std::string title, xlabel, ylabel; // labels (default: the column's name with its unit)
+  std::string style = "lines";        // series: lines, linespoints or points
+  std::string title, xlabel, ylabel;  // labels (default: the column's name with its unit)
   std::string output = "figure.png";
-  int width = 1200, height = 800;    // pixels for PNG/SVG; PDF is width/200 x height/200 inches
+  int width = 1200, height = 800;  // pixels for PNG/SVG; PDF is width/200 x height/200 inches
 };
 
 // One plotted series: its legend text and points (NaN rows dropped).

@@ -6,8 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <optional>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "scene/scene.h"
@@ -28,7 +28,8 @@ std::vector<std::string> strings(const json& j, const std::string& file, const s
   if (!j.is_array()) fail(file, path, "expected an array of overrides \"path=value\", got " + j.dump());
   std::vector<std::string> out;
   for (std::size_t i = 0; i < j.size(); ++i) {
-    if (!j[i].is_string()) fail(file, path + "/" + std::to_string(i), "expected a string \"path=value\", got " + j[i].dump());
+    if (!j[i].is_string())
+      fail(file, path + "/" + std::to_string(i), "expected a string \"path=value\", got " + j[i].dump());
     out.push_back(j[i].get<std::string>());
   }
   return out;
@@ -37,9 +38,12 @@ std::vector<std::string> strings(const json& j, const std::string& file, const s
 std::vector<SolverType> solvers(const json& j, const std::string& file, const std::string& path) {
   std::vector<SolverType> out;
   for (const json& s : j) {
-    if (s == "iisph") out.push_back(SolverType::IISPH);
-    else if (s == "wcsph") out.push_back(SolverType::WCSPH);
-    else fail(file, path, "invalid solver " + s.dump() + "; must be iisph or wcsph");
+    if (s == "iisph")
+      out.push_back(SolverType::IISPH);
+    else if (s == "wcsph")
+      out.push_back(SolverType::WCSPH);
+    else
+      fail(file, path, "invalid solver " + s.dump() + "; must be iisph or wcsph");
   }
   return out;
 }
@@ -58,9 +62,12 @@ bool HardCase::expects_stop(SolverType s) const {
 
 const char* outcome_name(Outcome o) {
   switch (o) {
-    case Outcome::Held: return "held";
-    case Outcome::ExpectedStop: return "expected_stop";
-    case Outcome::Failed: break;
+    case Outcome::Held:
+      return "held";
+    case Outcome::ExpectedStop:
+      return "expected_stop";
+    case Outcome::Failed:
+      break;
   }
   return "failed";
 }
@@ -85,32 +92,48 @@ std::vector<HardCase> load_suite(const std::string& path) {
     HardCase c;
     for (const auto& [key, v] : j.items()) {
       const std::string kp = at + "/" + key;
-      if (key == "name" && v.is_string()) c.name = v.get<std::string>();
-      else if (key == "scene" && v.is_string()) c.scene = v.get<std::string>();
-      else if (key == "what" && v.is_string()) c.what = v.get<std::string>();
-      else if (key == "set") c.set = strings(v, path, kp);
-      else if (key == "short") c.short_set = strings(v, path, kp);
-      else if (key == "iisph") c.iisph_set = strings(v, path, kp);
-      else if (key == "wcsph") c.wcsph_set = strings(v, path, kp);
-      else if (key == "resting" && v.is_boolean()) c.resting = v.get<bool>();
-      else if (key == "known_limit" && v.is_boolean()) c.known_limit = v.get<bool>();
-      else if (key == "max_density_error_iisph" && v.is_number() && v.get<double>() > 0) c.max_density_error_iisph = v.get<double>();
-      else if (key == "max_density_error_wcsph" && v.is_number() && v.get<double>() > 0) c.max_density_error_wcsph = v.get<double>();
-      else if (key == "why" && v.is_string()) c.why = v.get<std::string>();
-      else if (key == "solvers" && v.is_array()) c.solvers = solvers(v, path, kp);
-      else if (key == "expect_stop" && v.is_array()) c.expect_stop = solvers(v, path, kp);
+      if (key == "name" && v.is_string())
+        c.name = v.get<std::string>();
+      else if (key == "scene" && v.is_string())
+        c.scene = v.get<std::string>();
+      else if (key == "what" && v.is_string())
+        c.what = v.get<std::string>();
+      else if (key == "set")
+        c.set = strings(v, path, kp);
+      else if (key == "short")
+        c.short_set = strings(v, path, kp);
+      else if (key == "iisph")
+        c.iisph_set = strings(v, path, kp);
+      else if (key == "wcsph")
+        c.wcsph_set = strings(v, path, kp);
+      else if (key == "resting" && v.is_boolean())
+        c.resting = v.get<bool>();
+      else if (key == "known_limit" && v.is_boolean())
+        c.known_limit = v.get<bool>();
+      else if (key == "max_density_error_iisph" && v.is_number() && v.get<double>() > 0)
+        c.max_density_error_iisph = v.get<double>();
+      else if (key == "max_density_error_wcsph" && v.is_number() && v.get<double>() > 0)
+        c.max_density_error_wcsph = v.get<double>();
+      else if (key == "why" && v.is_string())
+        c.why = v.get<std::string>();
+      else if (key == "solvers" && v.is_array())
+        c.solvers = solvers(v, path, kp);
+      else if (key == "expect_stop" && v.is_array())
+        c.expect_stop = solvers(v, path, kp);
       else {
-        fail(path, kp, "unknown key or wrong type " + v.dump() +
-                           "; allowed: name, scene, what, why (strings), set, short, iisph, wcsph (arrays of \"path=value\"), "
-                           "solvers, expect_stop ([\"iisph\", \"wcsph\"]), resting, known_limit (bool), "
-                           "max_density_error_iisph, max_density_error_wcsph (numbers > 0, percent)");
+        fail(path, kp,
+             "unknown key or wrong type " + v.dump() +
+                 "; allowed: name, scene, what, why (strings), set, short, iisph, wcsph (arrays of \"path=value\"), "
+                 "solvers, expect_stop ([\"iisph\", \"wcsph\"]), resting, known_limit (bool), "
+                 "max_density_error_iisph, max_density_error_wcsph (numbers > 0, percent)");
       }
     }
     if (c.name.empty() || c.scene.empty()) fail(path, at, "needs \"name\" and \"scene\"");
     for (SolverType s : c.expect_stop)
       if (std::find(c.solvers.begin(), c.solvers.end(), s) == c.solvers.end())
         fail(path, at + "/expect_stop", "lists a solver the case does not run");
-    if (!c.expect_stop.empty() && c.why.empty()) fail(path, at, "\"expect_stop\" needs \"why\": the reason the stop is expected");
+    if (!c.expect_stop.empty() && c.why.empty())
+      fail(path, at, "\"expect_stop\" needs \"why\": the reason the stop is expected");
     cases.push_back(std::move(c));
   }
   return cases;
@@ -191,8 +214,10 @@ CaseResult run_case(const HardCase& c, const std::string& suite_dir, SolverType 
   if (!stopped) {
     if (r.leaks > 0) why << r.leaks << " fluid particles through a wall; ";
     if (iisph && r.avg_error > 1.02 * r.tolerance) why << "average error " << r.avg_error << " % above the tolerance; ";
-    if (r.max_density_error > r.bound) why << "density error " << r.max_density_error << " % above " << r.bound << " %; ";
-    if (c.resting && !(r.ke_end <= 0.5 * r.ke_peak)) why << "kinetic energy not decaying (end " << r.ke_end << ", peak " << r.ke_peak << "); ";
+    if (r.max_density_error > r.bound)
+      why << "density error " << r.max_density_error << " % above " << r.bound << " %; ";
+    if (c.resting && !(r.ke_end <= 0.5 * r.ke_peak))
+      why << "kinetic energy not decaying (end " << r.ke_end << ", peak " << r.ke_peak << "); ";
     if (c.resting && r.drift > scene.spacing) why << "centre of mass drifted " << r.drift << " m; ";
   }
   std::string problems = why.str();

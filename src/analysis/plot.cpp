@@ -26,7 +26,9 @@ std::string gnuplot_quote(const std::string& s) {
 std::string gnuplot_png_preamble(const std::string& output, int width, int height) {
   return "set terminal pngcairo size " + std::to_string(width) + "," + std::to_string(height) +
          " enhanced font \"DejaVu Sans,20\" linewidth 2\n"
-         "set output " + gnuplot_quote(output) + "\n"
+         "set output " +
+         gnuplot_quote(output) +
+         "\n"
          "set datafile separator \",\"\n"
          "set grid lc rgb \"#dddddd\"\n"
          "set key top left box opaque\n";
@@ -34,7 +36,8 @@ std::string gnuplot_png_preamble(const std::string& output, int width, int heigh
 
 std::string run_gnuplot(const std::string& script_path, const std::string& script) {
   write_file_atomic(script_path, script);
-  if (!gnuplot_available()) return "gnuplot not found (Debian package gnuplot-nox; scripts/install-deps.sh installs it)";
+  if (!gnuplot_available())
+    return "gnuplot not found (Debian package gnuplot-nox; scripts/install-deps.sh installs it)";
   const fs::path p = fs::absolute(script_path);
   // Single quotes around the paths: the shell must not expand anything in them.
   auto sh = [](const std::string& s) {

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -85,8 +85,12 @@ SweepRun run_sweep_point(const Scene& scene, const std::vector<std::string>& set
       dt_sum += st.dt;
       r.min_dt = std::min(r.min_dt, st.dt);
       r.max_density_error = std::max(r.max_density_error, st.density_error_percent);
-      const double ms[6] = {st.ms(Phase::Neighbors), st.ms(Phase::NonPressure), st.ms(Phase::Pressure),
-                            st.ms(Phase::Integrate), st.ms_total, st.ms(Phase::Boundary)};
+      const double ms[6] = {st.ms(Phase::Neighbors),
+                            st.ms(Phase::NonPressure),
+                            st.ms(Phase::Pressure),
+                            st.ms(Phase::Integrate),
+                            st.ms_total,
+                            st.ms(Phase::Boundary)};
       for (int k = 0; k < 6; ++k) r.ms_phase[k] += ms[k];
     }
   } catch (const SimulationUnstable& e) {
@@ -131,9 +135,9 @@ std::string sweep_csv(const std::vector<SweepRun>& runs) {
                   r.ms_phase[5], r.pareto ? 1 : 0);
     char dts[128];
     std::snprintf(dts, sizeof dts, "%.6g,%.6g,%.2f", r.avg_dt, r.min_dt, r.dt_of_max_percent);
-    text += csv_quote(r.scene) + "," + csv_quote(join(r.set, ";")) + "," + r.solver + "," + std::to_string(r.particles) + "," +
-            std::to_string(r.threads) + "," + (r.stable ? "1" : "0") + "," + csv_quote(r.message) + "," + nums + "," + dts +
-            "," + csv_quote(r.label()) + "\n";
+    text += csv_quote(r.scene) + "," + csv_quote(join(r.set, ";")) + "," + r.solver + "," +
+            std::to_string(r.particles) + "," + std::to_string(r.threads) + "," + (r.stable ? "1" : "0") + "," +
+            csv_quote(r.message) + "," + nums + "," + dts + "," + csv_quote(r.label()) + "\n";
   }
   return text;
 }
@@ -150,8 +154,8 @@ std::vector<SweepRun> read_sweep_csv(const std::string& path) {
     if (line.empty()) continue;
     const auto f = parse_csv_line(line);
     if (f.size() != fields)
-      throw InputError(path + ": line " + std::to_string(n) + ": expected " + std::to_string(fields) + " fields, found " +
-                       std::to_string(f.size()));
+      throw InputError(path + ": line " + std::to_string(n) + ": expected " + std::to_string(fields) +
+                       " fields, found " + std::to_string(f.size()));
     try {
       SweepRun r;
       r.scene = f[0];
@@ -209,7 +213,8 @@ std::string sweep_plot_script(const std::vector<SweepRun>& runs, const std::stri
     if (block.empty()) continue;
     data += "$" + std::string(sv.name) + " << EOD\n" + block + "EOD\n";
     add("$" + std::string(sv.name) + " using 1:2 with points " + sv.style + " title \"" + sv.title + "\"");
-    add("$" + std::string(sv.name) + " using 1:2:3 with labels offset char 0.8,0.8 left font \",13\" noenhanced notitle");
+    add("$" + std::string(sv.name) +
+        " using 1:2:3 with labels offset char 0.8,0.8 left font \",13\" noenhanced notitle");
   }
   std::vector<const SweepRun*> front;
   for (const SweepRun& r : runs)
@@ -228,7 +233,8 @@ std::string sweep_plot_script(const std::vector<SweepRun>& runs, const std::stri
   return "set datafile separator whitespace\n" + data + "set title \"" + title + "\" noenhanced\n" +
          "set logscale xy\nset xlabel \"wall time per simulated second [s]\"\n"
          "set ylabel \"average density error [%]\"\nset key outside top center horizontal box opaque\n"
-         "set offsets graph 0.05, graph 0.15, graph 0.1, graph 0.05\n" + plot + "\n";
+         "set offsets graph 0.05, graph 0.15, graph 0.1, graph 0.05\n" +
+         plot + "\n";
 }
 
 std::string sweep_markdown(const std::vector<SweepRun>& runs) {
@@ -240,11 +246,13 @@ std::string sweep_markdown(const std::vector<SweepRun>& runs) {
     const SweepRun& r = runs[i];
     char line[640];
     std::snprintf(line, sizeof line,
-                  "| %zu | `%s` | %s | %ld | %s | %.3f | %ld | %.3g | %.0f | %.2f | %.4f | %.4f | %.3f | %.3f | %.3f | %.3f | %s |\n",
+                  "| %zu | `%s` | %s | %ld | %s | %.3f | %ld | %.3g | %.0f | %.2f | %.4f | %.4f | %.3f | %.3f | %.3f | "
+                  "%.3f | %s |\n",
                   i + 1, join(r.set, " ").c_str(), r.solver.c_str(), r.particles,
-                  r.stable ? "yes" : ("no, t = " + std::to_string(r.simulated)).c_str(), r.seconds_per_simulated_second(),
-                  r.steps, r.avg_dt, r.dt_of_max_percent, r.avg_iterations, r.avg_density_error, r.max_density_error, r.ms_phase[0], r.ms_phase[1],
-                  r.ms_phase[2], r.ms_phase[3], r.pareto ? "**yes**" : "");
+                  r.stable ? "yes" : ("no, t = " + std::to_string(r.simulated)).c_str(),
+                  r.seconds_per_simulated_second(), r.steps, r.avg_dt, r.dt_of_max_percent, r.avg_iterations,
+                  r.avg_density_error, r.max_density_error, r.ms_phase[0], r.ms_phase[1], r.ms_phase[2], r.ms_phase[3],
+                  r.pareto ? "**yes**" : "");
     md += line;
   }
   return md;

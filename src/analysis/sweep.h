@@ -24,22 +24,22 @@ SweepAxis parse_sweep(const std::string& text);
 std::vector<std::vector<std::string>> sweep_combinations(const std::vector<SweepAxis>& axes);
 
 struct SweepRun {
-  std::string scene;                  // scene name
-  std::vector<std::string> set;       // the combination's overrides
+  std::string scene;             // scene name
+  std::vector<std::string> set;  // the combination's overrides
   std::string solver;
   long particles = 0;
   int threads = 0;
   bool stable = true;
-  std::string message;                // the detector's message when not stable
+  std::string message;  // the detector's message when not stable
   long steps = 0;
-  double simulated = 0;               // simulated seconds reached
+  double simulated = 0;  // simulated seconds reached
   double wall_seconds = 0;
   double avg_iterations = 0;
-  double avg_density_error = 0;       // mean over steps of Eq. 15's average density error [%]
-  double max_density_error = 0;       // its largest per-step value [%]
+  double avg_density_error = 0;             // mean over steps of Eq. 15's average density error [%]
+  double max_density_error = 0;             // its largest per-step value [%]
   double ms_phase[6] = {0, 0, 0, 0, 0, 0};  // per step: neighbours, non-pressure, pressure, integration, total, moving
   bool pareto = false;
-  double avg_dt = 0, min_dt = 0;      // step sizes [s]
+  double avg_dt = 0, min_dt = 0;  // step sizes [s]
   // The average step as a share of time.dt_max (or of a fixed time.dt) [%]: near 100,
   // dt_max bound the step rather than the CFL or acoustic limit (steps evened out to
   // land on frame times keep it a little below 100).

@@ -24,14 +24,14 @@ struct DepthBin {
 struct HydrostaticResult {
   std::string name;
   std::vector<DepthBin> bins;
-  long steps = 0, capped = 0;  // steps, and steps that hit max_iterations (IISPH)
-  double surface = 0;          // free-surface height at the end [m]
-  double worst_bin_error = 0;  // max |ratio - 1| over the checked bins
-  double worst_depth = 0;      // its depth [m]
-  double slope_error = 0;      // |fitted dp/dd / (rho0 g) - 1| over the checked bins
-  double floor_ratio = 0;      // largest ratio in the bins within 2h of the floor
-  double max_speed_end = 0;    // [m/s]
-  double median_speed_end = 0; // [m/s]
+  long steps = 0, capped = 0;   // steps, and steps that hit max_iterations (IISPH)
+  double surface = 0;           // free-surface height at the end [m]
+  double worst_bin_error = 0;   // max |ratio - 1| over the checked bins
+  double worst_depth = 0;       // its depth [m]
+  double slope_error = 0;       // |fitted dp/dd / (rho0 g) - 1| over the checked bins
+  double floor_ratio = 0;       // largest ratio in the bins within 2h of the floor
+  double max_speed_end = 0;     // [m/s]
+  double median_speed_end = 0;  // [m/s]
   // Time-averaged p / (rho0 g d) over the lower half of the column (all particles at
   // least 3h from the side walls and deeper than half the surface height), and over its
   // bottom row (the particles within h of the floor).
@@ -64,9 +64,9 @@ std::vector<HydrostaticCase> hydrostatic_cases();
 // fluid that stays at rest: median speed at the end, the lower half's and the bottom
 // row's pressure against rho0 g d.
 struct RestBounds {
-  double median_speed = 0.005;   // [m/s]
-  double lower_half = 0.01;      // |ratio - 1|
-  double bottom_row = 0.03;      // |ratio - 1|
+  double median_speed = 0.005;  // [m/s]
+  double lower_half = 0.01;     // |ratio - 1|
+  double bottom_row = 0.03;     // |ratio - 1|
 };
 bool within(const HydrostaticResult& r, const RestBounds& b);
 
@@ -92,14 +92,14 @@ struct FrontSample {
 };
 
 struct DamBreakResult {
-  double a = 0, height = 0;           // column width and height [m] (from the scene's fluid)
-  double wall_Z = 0;                  // Z at which the front meets the far wall (comparison ends before)
-  std::vector<FrontSample> front;     // at every frame time
+  double a = 0, height = 0;        // column width and height [m] (from the scene's fluid)
+  double wall_Z = 0;               // Z at which the front meets the far wall (comparison ends before)
+  std::vector<FrontSample> front;  // at every frame time
   struct Point {
     double T, Z_experiment, Z_simulated, relative_error;
   };
-  std::vector<Point> compared;        // the experiment's points inside the simulated range
-  double rms_relative_error = 0;      // sqrt(mean(relative_error^2)) over `compared`
+  std::vector<Point> compared;    // the experiment's points inside the simulated range
+  double rms_relative_error = 0;  // sqrt(mean(relative_error^2)) over `compared`
   long steps = 0;
   double avg_iterations = 0, wall_seconds = 0;
 };

@@ -52,7 +52,8 @@ BenchRow run_once(const Scene& scene, long steps, bool brute_force) {
 namespace fs = std::filesystem;
 
 std::string shell_quote(const std::string& s) {
-  if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./=:+,") == std::string::npos)
+  if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./=:+,") ==
+                        std::string::npos)
     return s;
   std::string q = "'";
   for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -74,8 +75,8 @@ void print_sweep_row(std::size_t i, const analysis::SweepRun& r) {
   std::string set;
   for (const auto& s : r.set) set += (set.empty() ? "" : " ") + s;
   std::printf("%4zu %-44s %-6s %5s %10.3f %7ld %7.2f %10.4f %10.4f  %s\n", i + 1, set.c_str(), r.solver.c_str(),
-              r.stable ? "yes" : "NO", r.seconds_per_simulated_second(), r.steps, r.avg_iterations,
-              r.avg_density_error, r.max_density_error, r.pareto ? "*" : "");
+              r.stable ? "yes" : "NO", r.seconds_per_simulated_second(), r.steps, r.avg_iterations, r.avg_density_error,
+              r.max_density_error, r.pareto ? "*" : "");
   std::fflush(stdout);
 }
 
@@ -83,10 +84,11 @@ void write_sweep_outputs(std::vector<analysis::SweepRun>& runs, const fs::path& 
   analysis::mark_pareto_front(runs);
   write_file_atomic((dir / "bench.csv").string(), analysis::sweep_csv(runs));
   write_file_atomic((dir / "bench.md").string(), analysis::sweep_markdown(runs));
-  const std::string why = analysis::run_gnuplot((dir / "bench.gp").string(),
-                                                analysis::gnuplot_png_preamble("bench.png") +
-                                                    analysis::sweep_plot_script(runs, title));
-  if (!why.empty()) std::fprintf(stderr, "sluice: warning: no plot: %s (bench.csv and bench.md are written)\n", why.c_str());
+  const std::string why =
+      analysis::run_gnuplot((dir / "bench.gp").string(),
+                            analysis::gnuplot_png_preamble("bench.png") + analysis::sweep_plot_script(runs, title));
+  if (!why.empty())
+    std::fprintf(stderr, "sluice: warning: no plot: %s (bench.csv and bench.md are written)\n", why.c_str());
   std::printf("wrote %s, bench.md%s\n", (dir / "bench.csv").string().c_str(), why.empty() ? ", bench.png" : "");
 }
 
@@ -122,8 +124,10 @@ int run_sweep(const BenchOptions& o) {
     const fs::path jobs(o.jobs);
     if (jobs.has_parent_path()) make_directory(jobs.parent_path());
     write_file_atomic(o.jobs, text);
-    std::printf("wrote %zu command lines to %s; run them (e.g. parallel -j1 < %s), then: sluice bench --collect %s/run_* -o %s\n",
-                combos.size(), o.jobs.c_str(), o.jobs.c_str(), dir.string().c_str(), dir.string().c_str());
+    std::printf(
+        "wrote %zu command lines to %s; run them (e.g. parallel -j1 < %s), then: sluice bench --collect %s/run_* -o "
+        "%s\n",
+        combos.size(), o.jobs.c_str(), o.jobs.c_str(), dir.string().c_str(), dir.string().c_str());
     return 0;
   }
   make_directory(dir);
@@ -189,7 +193,8 @@ int run_end_to_end(const BenchOptions& o) {
   std::printf("%-22s %6s %6s %8s %7s %9s %9s %9s %9s %9s %9s\n", "scene", "frames", "steps", "iters", "wall_s",
               "simul_s", "draw_s", "png_s", "png_wait", "video_s", "other_s");
   const double other = wall - t.at("simulation_s").get<double>() - t.at("drawing_s").get<double>() -
-                       t.at("png_wait_s").get<double>() - t.at("exports_s").get<double>() - t.at("video_s").get<double>();
+                       t.at("png_wait_s").get<double>() - t.at("exports_s").get<double>() -
+                       t.at("video_s").get<double>();
   const std::string name = summary.at("scene").value("name", "");
   std::printf("%-22s %6ld %6.0f %8.2f %7.1f %9.1f %9.1f %9.1f %9.1f %9.1f %9.1f\n", name.c_str(),
               t.at("frames").get<long>(), steps, totals.value("average_iterations", 0.0), wall,
@@ -203,7 +208,8 @@ int run_end_to_end(const BenchOptions& o) {
                 omp_get_max_threads());
   const std::string csv = (dir / "end_to_end.csv").string();
   write_file_atomic(csv, std::string("scene,resolution,fps,duration_s,frames,steps,wall_s,simulation_s,drawing_s,png_s,"
-                                     "png_wait_s,exports_s,video_s,other_s,threads\n") + line);
+                                     "png_wait_s,exports_s,video_s,other_s,threads\n") +
+                             line);
   std::printf("wrote %s\n", csv.c_str());
   return 0;
 }
@@ -237,7 +243,8 @@ int run_bench(const BenchOptions& o) {
   if (csv.has_parent_path()) std::filesystem::create_directories(csv.parent_path());
   std::string text =
       "scene,solver,threads,particles,steps,avg_iterations,avg_error_percent,density_error_percent,"
-      "us_per_particle_step,us_neighbors,us_nonpressure,us_pressure,us_integrate,us_moving_boundaries,ms_per_step,repeats\n";
+      "us_per_particle_step,us_neighbors,us_nonpressure,us_pressure,us_integrate,us_moving_boundaries,ms_per_step,"
+      "repeats\n";
   for (const BenchRow& m : rows) {
     const double ns = std::max(1.0, static_cast<double>(m.totals.steps));
     char line[512];

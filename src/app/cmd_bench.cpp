@@ -9,20 +9,24 @@ Command add_bench(CLI::App& app) {
   auto bench = std::make_shared<BenchOptions>();
   CLI::App* benchcmd = app.add_subcommand("bench", "Time scenes; print a table and write CSV");
   benchcmd->add_option("scenes", bench->scenes, "Scene files (one in sweep mode; none with --collect)");
-  benchcmd->add_option("--steps", bench->steps, "Steps per run (0: the whole duration)")->check(number_check(true, 0, false));
+  benchcmd->add_option("--steps", bench->steps, "Steps per run (0: the whole duration)")
+      ->check(number_check(true, 0, false));
   benchcmd->add_option("--repeat", bench->repeat, "Runs per scene; the median is reported")
       ->check(number_check(true, 1, false));
   benchcmd->add_option("--threads", bench->threads, "OpenMP threads")->check(threads_check());
   benchcmd->add_option("--set", bench->set, "Override a scene value (applies to every scene)")->take_all();
   benchcmd->add_option("--csv", bench->csv, "CSV output file");
   benchcmd->add_flag("--brute-force", bench->brute_force, "O(n^2) neighbour search instead of the grid");
-  benchcmd->add_option("--sweep", bench->sweep, "Sweep a scene value: KEY=V1,V2,... (repeatable; every combination runs)");
+  benchcmd->add_option("--sweep", bench->sweep,
+                       "Sweep a scene value: KEY=V1,V2,... (repeatable; every combination runs)");
   benchcmd->add_option("--duration", bench->duration, "Sweep: simulated seconds per run (overrides time.duration)")
       ->check(positive_check());
-  benchcmd->add_option("-o,--output", bench->output_dir, "Sweep: directory for bench.csv, bench.md, bench.png (default renders/bench/<scene>)");
+  benchcmd->add_option("-o,--output", bench->output_dir,
+                       "Sweep: directory for bench.csv, bench.md, bench.png (default renders/bench/<scene>)");
   benchcmd->add_option("--jobs", bench->jobs, "Sweep: write one command line per run to this file instead of running");
   benchcmd->add_flag("--end-to-end", bench->end_to_end,
-                     "Time `render` of one scene (default scenes/dam_break_130k.json, 5 s, 60 fps, 1920x1080) as a whole, split into simulation, drawing, PNG and video");
+                     "Time `render` of one scene (default scenes/dam_break_130k.json, 5 s, 60 fps, 1920x1080) as a "
+                     "whole, split into simulation, drawing, PNG and video");
   benchcmd->add_option("--fps", bench->fps, "End-to-end: frames per second (default 60)")->check(positive_check());
   benchcmd->add_option("--resolution", bench->resolution, "End-to-end: WxH (default 1920x1080)");
   benchcmd->add_option("--collect", bench->collect, "Merge the bench.csv of these directories into -o DIR")->take_all();

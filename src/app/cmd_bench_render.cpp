@@ -9,7 +9,8 @@ Command add_bench_render(CLI::App& app) {
   auto brender = std::make_shared<BenchRenderOptions>();
   CLI::App* benchrender = app.add_subcommand("bench-render", "Time the renderer: draw, read-back, PNG per frame");
   benchrender->add_option("--particles", brender->particles, "Particle counts (default 10000 130000)")
-      ->delimiter(',')->check(number_check(true, 1, false));
+      ->delimiter(',')
+      ->check(number_check(true, 1, false));
   benchrender->add_option("--resolution", brender->resolutions, "Resolutions WxH (default 1280x720 1920x1080)")
       ->delimiter(',');
   benchrender->add_option("--repeat", brender->repeat, "Frames timed per case; the median is reported")

@@ -9,9 +9,12 @@ Command add_figures(CLI::App& app) {
   auto fig = std::make_shared<FiguresOptions>();
   CLI::App* figcmd = app.add_subcommand(
       "figures", "Figures from stats/bench/experiment CSV files with gnuplot: series, box, scatter, table, run");
-  figcmd->add_option("kind", fig->kind, "series (y over x), box (distributions), scatter (points, Pareto front), "
-                                        "table (Markdown), run (the standard figures of run directories)")
-      ->required()->check(CLI::IsMember({"series", "box", "scatter", "table", "run"}));
+  figcmd
+      ->add_option("kind", fig->kind,
+                   "series (y over x), box (distributions), scatter (points, Pareto front), "
+                   "table (Markdown), run (the standard figures of run directories)")
+      ->required()
+      ->check(CLI::IsMember({"series", "box", "scatter", "table", "run"}));
   figcmd->add_option("inputs", fig->inputs, "CSV files (run: directories holding stats.csv)")->required();
   figcmd->add_option("--x", fig->x, "Column on the x axis (default time)");
   figcmd->add_option("--y", fig->y, "Column(s) to plot; each is its own series")->delimiter(',');

@@ -7,7 +7,8 @@ namespace sluice::app {
 
 Command add_suite(CLI::App& app) {
   auto suite = std::make_shared<SuiteOptions>();
-  CLI::App* suitecmd = app.add_subcommand("suite", "Run the hard-case suite with both solvers; print a pass/fail table");
+  CLI::App* suitecmd =
+      app.add_subcommand("suite", "Run the hard-case suite with both solvers; print a pass/fail table");
   suitecmd->add_option("file", suite->file, "Suite file (default scenes/hard/suite.json)");
   suitecmd->add_flag("--short", suite->quick, "The short version of every case (what CI runs)");
   suitecmd->add_option("--solver", suite->solver, "iisph, wcsph or both (default)")

@@ -7,14 +7,23 @@ namespace sluice::app {
 
 Command add_validate(CLI::App& app) {
   auto val = std::make_shared<ValidateOptions>();
-  CLI::App* validatecmd = app.add_subcommand("validate", "Validation against known answers: hydrostatic pressure, Martin & Moyce's dam break, Monaghan's elliptical drop");
-  validatecmd->add_option("what", val->what, "hydrostatic, dam-break, elliptical-drop or thin-plate")->required()->check(CLI::IsMember({"hydrostatic", "dam-break", "elliptical-drop", "thin-plate"}));
-  validatecmd->add_option("--scene", val->scene, "Scene file (default scenes/validation/hydrostatic.json, dam_break_martin_moyce.json or elliptical_drop.json)");
-  validatecmd->add_option("-o,--output", val->output_dir, "Directory for the CSV files and figures (default renders/validation)");
+  CLI::App* validatecmd = app.add_subcommand(
+      "validate",
+      "Validation against known answers: hydrostatic pressure, Martin & Moyce's dam break, Monaghan's elliptical drop");
+  validatecmd->add_option("what", val->what, "hydrostatic, dam-break, elliptical-drop or thin-plate")
+      ->required()
+      ->check(CLI::IsMember({"hydrostatic", "dam-break", "elliptical-drop", "thin-plate"}));
+  validatecmd->add_option(
+      "--scene", val->scene,
+      "Scene file (default scenes/validation/hydrostatic.json, dam_break_martin_moyce.json or elliptical_drop.json)");
+  validatecmd->add_option("-o,--output", val->output_dir,
+                          "Directory for the CSV files and figures (default renders/validation)");
   validatecmd->add_option("--solver", val->solver, "iisph, wcsph or both (default)")
       ->check(CLI::IsMember({"iisph", "wcsph", "both"}));
   validatecmd->add_option("--case", val->only, "hydrostatic: only this case, e.g. iisph_mirroring");
-  validatecmd->add_option("--spacing", val->spacing, "dam-break, elliptical-drop: particle spacing h [m] (default: the scene's, 0.02 and 0.025)")
+  validatecmd
+      ->add_option("--spacing", val->spacing,
+                   "dam-break, elliptical-drop: particle spacing h [m] (default: the scene's, 0.02 and 0.025)")
       ->check(positive_check());
   validatecmd->add_option("--max-rms", val->max_rms, "dam-break: bound on the RMS relative front error (default 0.20)")
       ->check(positive_check());

@@ -16,7 +16,7 @@ struct SimulateOptions {
   std::vector<std::string> set;
   std::vector<std::string> exports;  // csv, vtk (empty: the scene's output.export)
   bool quiet = false;
-  bool overwrite = false;  // replace a previous run in the output directory
+  bool overwrite = false;    // replace a previous run in the output directory
   int checkpoint_every = 0;  // frames between checkpoints (0: none)
   std::string resume;        // run directory to continue (its recorded scene and flags)
 };
@@ -24,8 +24,8 @@ int run_simulate(const SimulateOptions& o);
 
 struct BenchOptions {
   std::vector<std::string> scenes;
-  long steps = 200;        // steps per run (0: the scene's whole duration)
-  int repeat = 3;          // runs per scene; the median is reported
+  long steps = 200;  // steps per run (0: the scene's whole duration)
+  int repeat = 3;    // runs per scene; the median is reported
   int threads = 0;
   std::vector<std::string> set;
   std::string csv = "renders/bench/bench.csv";
@@ -56,14 +56,14 @@ struct RenderOptions {
   std::string frames;      // "A:B": render only frames A..B (the run stops at B)
   ImageOptions image;
   bool no_video = false;
-  std::string format = "mp4";    // video container: mp4 | webm | gif
-  int crf = -1;                  // video quality (< 0: the format's default)
+  std::string format = "mp4";                    // video container: mp4 | webm | gif
+  int crf = -1;                                  // video quality (< 0: the format's default)
   std::string frame_pattern = "frame_%05d.png";  // the PNG frames' names (printf, one %d)
-  std::vector<std::string> exports;  // csv, vtk (empty: the scene's output.export)
+  std::vector<std::string> exports;              // csv, vtk (empty: the scene's output.export)
   int threads = 0;
   std::vector<std::string> set;
   bool quiet = false;
-  bool overwrite = false;  // replace a previous run in the output directory
+  bool overwrite = false;    // replace a previous run in the output directory
   int checkpoint_every = 0;  // frames between checkpoints (0: none)
   std::string resume;        // run directory to continue (its recorded scene and flags)
 };
@@ -105,22 +105,22 @@ int run_bench_render(const BenchRenderOptions& o);
 
 struct SuiteOptions {
   std::string file = "scenes/hard/suite.json";
-  bool quick = false;        // the short version of every case (what CI runs)
+  bool quick = false;           // the short version of every case (what CI runs)
   std::string solver = "both";  // iisph | wcsph | both
-  std::string only;          // run only the case of this name
+  std::string only;             // run only the case of this name
   int threads = 0;
   std::string csv = "renders/suite/suite.csv";
 };
 int run_suite(const SuiteOptions& o);
 
 struct ValidateOptions {
-  std::string what;          // hydrostatic | dam-break | elliptical-drop
-  std::string scene;         // empty: scenes/validation/<what>.json
+  std::string what;   // hydrostatic | dam-break | elliptical-drop
+  std::string scene;  // empty: scenes/validation/<what>.json
   std::string output_dir = "renders/validation";
   std::string solver = "both";  // dam-break, elliptical-drop: iisph | wcsph | both
-  std::string only;          // hydrostatic: run only this case
-  double spacing = 0;        // dam-break, elliptical-drop: > 0 overrides the scene's spacing
-  double max_rms = 0.20;     // dam-break: bound on the RMS relative front error (the tests' bound)
+  std::string only;             // hydrostatic: run only this case
+  double spacing = 0;           // dam-break, elliptical-drop: > 0 overrides the scene's spacing
+  double max_rms = 0.20;        // dam-break: bound on the RMS relative front error (the tests' bound)
   int threads = 0;
   std::vector<std::string> set;
 };
@@ -136,17 +136,17 @@ std::string number_override(const std::string& path, double value);
 // values of one scene setting) in one grid image with one shared colour scale.
 struct MontageOptions {
   std::string scene;
-  std::string times;       // "T1,T2,...": strictly increasing, within [0, time.duration]
-  std::string vary;        // "KEY=V1,V2,...": one fresh run per value (applied as --set KEY=V)
-  int cols = 0;            // 0: the number of times when varying, else min(4, times)
+  std::string times;  // "T1,T2,...": strictly increasing, within [0, time.duration]
+  std::string vary;   // "KEY=V1,V2,...": one fresh run per value (applied as --set KEY=V)
+  int cols = 0;       // 0: the number of times when varying, else min(4, times)
   std::vector<std::string> set;
   std::string cell = "480x270";  // size of each rendered cell, WxH
-  std::string color_by;    // empty: the scene's render.color_by
-  std::string colormap;    // empty: the scene's render.colormap
-  std::string range;       // "lo:hi" or "auto"; empty: the scene's render range
+  std::string color_by;          // empty: the scene's render.color_by
+  std::string colormap;          // empty: the scene's render.colormap
+  std::string range;             // "lo:hi" or "auto"; empty: the scene's render range
   std::string title;
   std::string overlay = "time";  // each cell's band: full | time | none
-  std::string output;      // empty: <output directory>/montage.png
+  std::string output;            // empty: <output directory>/montage.png
   int threads = 0;
 };
 int run_montage(const MontageOptions& o);
@@ -158,8 +158,8 @@ namespace sluice::app {
 // `sluice figures KIND INPUT...`: gnuplot figures from stats.csv / bench.csv / experiment
 // CSV files (analysis/figures.h), Markdown tables, and the standard figures of a run.
 struct FiguresOptions {
-  std::string kind;                  // series | box | scatter | table | run
-  std::vector<std::string> inputs;   // CSV files (run: run directories holding stats.csv)
+  std::string kind;                 // series | box | scatter | table | run
+  std::vector<std::string> inputs;  // CSV files (run: run directories holding stats.csv)
   std::string x = "time";
   std::vector<std::string> y;
   std::vector<std::string> labels;
@@ -170,7 +170,7 @@ struct FiguresOptions {
   bool mean = false, pareto = false, logx = false, logy = false;
   std::string style = "lines";
   std::string title, xlabel, ylabel;
-  std::string output;                // figure (png/svg/pdf) or table (.md); run: a directory
+  std::string output;  // figure (png/svg/pdf) or table (.md); run: a directory
   std::string size = "1200x800";
   std::vector<std::string> columns;  // table: the columns to show (default all)
   std::string format = "png";        // run: png, svg or pdf
@@ -184,12 +184,12 @@ namespace sluice::app {
 // `sluice experiment NAME...`: the thesis' chapter-5 experiments (app/experiment.cpp lists
 // them, app/experiments/ holds one file each).
 struct ExperimentOptions {
-  std::vector<std::string> names;                   // experiment names, `all` or `list`
+  std::vector<std::string> names;                  // experiment names, `all` or `list`
   std::string output_dir = "renders/experiments";  // each experiment writes DIR/<name>/
-  bool quick = false;                               // small versions (tests, a first look)
-  std::string scenes = "scenes";                    // folder of the base scenes
-  std::string scene;                                // replaces the base scene (one experiment)
-  std::vector<std::string> set;                     // overrides applied after the experiment's
+  bool quick = false;                              // small versions (tests, a first look)
+  std::string scenes = "scenes";                   // folder of the base scenes
+  std::string scene;                               // replaces the base scene (one experiment)
+  std::vector<std::string> set;                    // overrides applied after the experiment's
   int threads = 0;
 };
 int run_experiment(const ExperimentOptions& o);

@@ -26,7 +26,8 @@ struct Rect {
   long x = 0, y = 0, w = 0, h = 0;
 };
 
-const char* const kRegionAllowed = "expected x,y,w,h: whole numbers with x, y >= 0 and w, h >= 1 (pixels, from the top left)";
+const char* const kRegionAllowed =
+    "expected x,y,w,h: whole numbers with x, y >= 0 and w, h >= 1 (pixels, from the top left)";
 
 // "x,y,w,h"; throws FlagError. Checked against the images' size once they are read.
 Rect parse_region(const std::string& text) {
@@ -37,7 +38,8 @@ Rect parse_region(const std::string& text) {
     errno = 0;
     v[k] = std::strtol(p, &end, 10);
     const bool digit = *p >= '0' && *p <= '9';  // no sign, no space
-    if (!digit || end == p || errno != 0 || *end != (k < 3 ? ',' : '\0')) throw FlagError("--region", text, kRegionAllowed);
+    if (!digit || end == p || errno != 0 || *end != (k < 3 ? ',' : '\0'))
+      throw FlagError("--region", text, kRegionAllowed);
     p = end + 1;
   }
   if (v[2] < 1 || v[3] < 1) throw FlagError("--region", text, kRegionAllowed);
@@ -49,7 +51,8 @@ void check_inside(const Rect& r, const std::string& text, const Image& img) {
   throw FlagError("--region", text,
                   "the rectangle ends at x = " + std::to_string(r.x + r.w) + ", y = " + std::to_string(r.y + r.h) +
                       ", outside the images (" + std::to_string(img.width) + "x" + std::to_string(img.height) +
-                      "); allowed: x + w <= " + std::to_string(img.width) + " and y + h <= " + std::to_string(img.height));
+                      "); allowed: x + w <= " + std::to_string(img.width) +
+                      " and y + h <= " + std::to_string(img.height));
 }
 
 // The pixels left out: the mask's non-black pixels and every --region rectangle.
@@ -61,13 +64,15 @@ PixelMask ignored_pixels(const CompareOptions& o, const std::vector<Rect>& regio
     if (m.width != img.width || m.height != img.height)
       throw FlagError("--mask", o.mask,
                       "the mask is " + std::to_string(m.width) + "x" + std::to_string(m.height) +
-                          "; it must have the images' size, " + std::to_string(img.width) + "x" + std::to_string(img.height));
+                          "; it must have the images' size, " + std::to_string(img.width) + "x" +
+                          std::to_string(img.height));
     for (size_t i = 0; i < ignore.size(); ++i) ignore[i] = (m.rgb[3 * i] | m.rgb[3 * i + 1] | m.rgb[3 * i + 2]) != 0;
   }
   for (size_t k = 0; k < regions.size(); ++k) {
     check_inside(regions[k], o.regions[k], img);
     for (long y = regions[k].y; y < regions[k].y + regions[k].h; ++y)
-      for (long x = regions[k].x; x < regions[k].x + regions[k].w; ++x) ignore[static_cast<size_t>(y) * img.width + x] = 1;
+      for (long x = regions[k].x; x < regions[k].x + regions[k].w; ++x)
+        ignore[static_cast<size_t>(y) * img.width + x] = 1;
   }
   return ignore;
 }
@@ -87,7 +92,8 @@ void check_diff_path(const CompareOptions& o) {
   for (const std::string& in : {o.a, o.b})
     if (fs::equivalent(o.diff, in, ec))
       throw FlagError("--diff", o.diff, "it names the input image " + in + "; choose another path for the diff image");
-  if (fs::is_directory(o.diff, ec)) throw FlagError("--diff", o.diff, "is a directory; --diff takes the PNG file to write");
+  if (fs::is_directory(o.diff, ec))
+    throw FlagError("--diff", o.diff, "is a directory; --diff takes the PNG file to write");
 }
 
 void print_report(const CompareOptions& o, const CompareRule& rule, const CompareResult& r) {

@@ -39,18 +39,28 @@ struct Experiment {
 const std::vector<Experiment>& experiment_list() {
   static const std::vector<Experiment> list = {
       {"snapshots", "Figure 2", "breaking dam snapshots at eight times (montage)", experiments::snapshots},
-      {"dam-break-iterations", "Figure 3", "solver iterations and compression error over time, breaking dam", experiments::dam_break_iterations},
-      {"iisph-dt", "Figure 6a, Table 2", "IISPH iterations and pressure/neighbour/overall time against dt, column", experiments::iisph_dt},
-      {"column-height", "Figure 6b", "IISPH iterations against column height at fixed dt", experiments::column_height_experiment},
-      {"fixed-iterations", "Figure 7", "compression error against a fixed number of Jacobi iterations", experiments::fixed_iterations},
-      {"boundary-pressure", "Figure 8", "pressure field of the three boundary methods side by side (montage)", experiments::boundary_pressure},
-      {"boundary-gamma", "Figure 9", "gamma1-3 search for each boundary method, best values", experiments::boundary_gamma},
-      {"boundary-iterations", "Figure 10", "iteration distributions per boundary method", experiments::boundary_iterations},
+      {"dam-break-iterations", "Figure 3", "solver iterations and compression error over time, breaking dam",
+       experiments::dam_break_iterations},
+      {"iisph-dt", "Figure 6a, Table 2", "IISPH iterations and pressure/neighbour/overall time against dt, column",
+       experiments::iisph_dt},
+      {"column-height", "Figure 6b", "IISPH iterations against column height at fixed dt",
+       experiments::column_height_experiment},
+      {"fixed-iterations", "Figure 7", "compression error against a fixed number of Jacobi iterations",
+       experiments::fixed_iterations},
+      {"boundary-pressure", "Figure 8", "pressure field of the three boundary methods side by side (montage)",
+       experiments::boundary_pressure},
+      {"boundary-gamma", "Figure 9", "gamma1-3 search for each boundary method, best values",
+       experiments::boundary_gamma},
+      {"boundary-iterations", "Figure 10", "iteration distributions per boundary method",
+       experiments::boundary_iterations},
       {"wcsph", "Table 3, Figure 12", "WCSPH error against stiffness, time against dt", experiments::wcsph},
-      {"speed-error", "Section 5.5", "IISPH against WCSPH: time against error, Pareto front and crossover", experiments::speed_error},
-      {"parallel", "Figure 11", "1 against 2 threads: column sizes and the 130k breaking dam's efficiency", experiments::parallel},
+      {"speed-error", "Section 5.5", "IISPH against WCSPH: time against error, Pareto front and crossover",
+       experiments::speed_error},
+      {"parallel", "Figure 11", "1 against 2 threads: column sizes and the 130k breaking dam's efficiency",
+       experiments::parallel},
       {"scaling", "(O(n) target)", "time per particle-step from 10k to 1M particles", experiments::scaling},
-      {"neighbour-search", "Figure 14", "naive against spatial-hashing neighbour search", experiments::neighbour_search},
+      {"neighbour-search", "Figure 14", "naive against spatial-hashing neighbour search",
+       experiments::neighbour_search},
   };
   return list;
 }
@@ -75,7 +85,8 @@ int run_experiment(const ExperimentOptions& o) {
       for (const auto& e : experiment_list()) chosen.push_back(&e);
       continue;
     }
-    const auto it = std::find_if(experiment_list().begin(), experiment_list().end(), [&](const Experiment& e) { return n == e.name; });
+    const auto it = std::find_if(experiment_list().begin(), experiment_list().end(),
+                                 [&](const Experiment& e) { return n == e.name; });
     if (it == experiment_list().end())
       throw view::FlagError("name", n, "one of: " + analysis::join(experiment_names(), ", ") + ", all, list");
     chosen.push_back(&*it);
@@ -84,8 +95,9 @@ int run_experiment(const ExperimentOptions& o) {
     throw view::FlagError("--scene", o.scene, "one experiment at a time (each has its own base scene)");
   set_threads(o.threads);
   const fs::path root(o.output_dir);
-  std::string index = "# sluice: the experiments of the thesis' chapter 5\n\nWritten by `sluice experiment` "
-                      "(scripts/experiments.sh runs them all). Each section's figures and CSV files are in its folder.\n\n";
+  std::string index =
+      "# sluice: the experiments of the thesis' chapter 5\n\nWritten by `sluice experiment` "
+      "(scripts/experiments.sh runs them all). Each section's figures and CSV files are in its folder.\n\n";
   for (const Experiment* e : chosen) {
     Context c;
     c.root = root;
@@ -96,8 +108,8 @@ int run_experiment(const ExperimentOptions& o) {
     c.set = o.set;
     make_directory(c.dir);
     std::printf("%s (%s): %s\n", e->name, e->thesis, e->what);
-    c.md = "## " + std::string(e->name) + " (thesis " + e->thesis + ")\n\n" + e->what + ". Command: `sluice experiment " +
-           e->name + (o.quick ? " --quick" : "") + "`.\n\n";
+    c.md = "## " + std::string(e->name) + " (thesis " + e->thesis + ")\n\n" + e->what +
+           ". Command: `sluice experiment " + e->name + (o.quick ? " --quick" : "") + "`.\n\n";
     e->run(c);
     write_file_atomic((c.dir / "summary.md").string(), c.md);
     std::printf("  wrote %s\n", (c.dir / "summary.md").string().c_str());
@@ -110,7 +122,8 @@ int run_experiment(const ExperimentOptions& o) {
     std::ifstream in(summary);
     std::string linked((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     // The index links the figures from the root folder.
-    for (std::size_t p = 0; (p = linked.find("](", p)) != std::string::npos; p += 2) linked.insert(p + 2, std::string(e.name) + "/");
+    for (std::size_t p = 0; (p = linked.find("](", p)) != std::string::npos; p += 2)
+      linked.insert(p + 2, std::string(e.name) + "/");
     index += linked;
   }
   write_file_atomic((root / "README.md").string(), index);

@@ -47,8 +47,10 @@ FigureSpec spec_from(const FiguresOptions& o, FigureKind kind) {
 }
 
 void report(const std::string& output, const std::string& why) {
-  if (why.empty()) std::printf("wrote %s\n", output.c_str());
-  else throw OutputError(output + ": no figure: " + why);
+  if (why.empty())
+    std::printf("wrote %s\n", output.c_str());
+  else
+    throw OutputError(output + ": no figure: " + why);
 }
 
 // The standard figures of one or more runs (directories with stats.csv): iterations and
@@ -62,7 +64,8 @@ int run_standard_figures(const FiguresOptions& o) {
   for (const auto& dir : o.inputs) {
     const fs::path stats = fs::path(dir) / "stats.csv";
     if (!fs::is_regular_file(stats))
-      throw analysis::InputError(stats.string() + ": not found; `figures run` takes run directories written by simulate or render");
+      throw analysis::InputError(stats.string() +
+                                 ": not found; `figures run` takes run directories written by simulate or render");
     base.inputs.push_back(stats.string());
   }
   const fs::path out = o.output.empty() ? fs::path(o.inputs[0]) / "figures" : fs::path(o.output);
@@ -123,7 +126,9 @@ int run_figures(const FiguresOptions& o) {
     }
     return 0;
   }
-  const FigureKind kind = o.kind == "series" ? FigureKind::Series : o.kind == "box" ? FigureKind::Box : FigureKind::Scatter;
+  const FigureKind kind = o.kind == "series" ? FigureKind::Series
+                          : o.kind == "box"  ? FigureKind::Box
+                                             : FigureKind::Scatter;
   const FigureSpec spec = spec_from(o, kind);
   report(spec.output, analysis::make_figure(spec));
   return 0;

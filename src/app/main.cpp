@@ -45,10 +45,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   // In the order `sluice --help` lists them.
-  const std::vector<Command> commands = {add_simulate(app), add_bench(app),        add_render(app),
-                                         add_still(app),    add_montage(app),      add_compare(app),
-                                         add_bench_render(app), add_suite(app),    add_validate(app),
-                                         add_figures(app),  add_experiment(app)};
+  const std::vector<Command> commands = {add_simulate(app), add_bench(app),   add_render(app),       add_still(app),
+                                         add_montage(app),  add_compare(app), add_bench_render(app), add_suite(app),
+                                         add_validate(app), add_figures(app), add_experiment(app)};
   const CLI::App* compare = nullptr;
   for (const Command& c : commands)
     if (c.cli->get_name() == "compare") compare = c.cli;
@@ -76,8 +75,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "sluice: out of memory %s\n", e.what());
     return 1;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "sluice: out of memory (std::bad_alloc) while running the command; a smaller scene "
-                         "(larger spacing) or more memory is needed\n");
+    std::fprintf(stderr,
+                 "sluice: out of memory (std::bad_alloc) while running the command; a smaller scene "
+                 "(larger spacing) or more memory is needed\n");
     return 1;
   } catch (const sluice::SceneError& e) {
     std::fprintf(stderr, "sluice: scene error: %s\n", e.what());

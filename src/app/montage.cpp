@@ -64,7 +64,7 @@ std::vector<double> parse_times(const std::string& text) {
 }
 
 struct Variation {
-  std::string key;                  // empty: no --vary, one run
+  std::string key;  // empty: no --vary, one run
   std::vector<std::string> values;
 };
 
@@ -72,7 +72,8 @@ Variation parse_vary(const std::string& text) {
   Variation v;
   if (text.empty()) return v;
   const size_t eq = text.find('=');
-  const char* allowed = "expected KEY=V1,V2,... with a scene path as for --set, e.g. solver.boundary_pressure=extrapolation,zero";
+  const char* allowed =
+      "expected KEY=V1,V2,... with a scene path as for --set, e.g. solver.boundary_pressure=extrapolation,zero";
   if (eq == std::string::npos || eq == 0) throw FlagError("--vary", text, allowed);
   v.key = text.substr(0, eq);
   v.values = split(text.substr(eq + 1), ',');
@@ -107,8 +108,8 @@ Scene load_variant(const MontageOptions& o, const std::vector<double>& times, co
   const double duration = scene.time.duration;
   if (times.back() > duration)
     throw FlagError("--times", o.times,
-                    "time " + number_text(times.back()) + " s is after the scene's end; allowed: 0 to time.duration = " +
-                        number_text(duration) + " s");
+                    "time " + number_text(times.back()) +
+                        " s is after the scene's end; allowed: 0 to time.duration = " + number_text(duration) + " s");
   const std::optional<double> fps = landing_fps(times, scene.time.fps);
   if (!fps)
     throw FlagError("--times", o.times,
@@ -193,7 +194,9 @@ int run_montage(const MontageOptions& o) {
 
   // Every variant's scene before any run: a bad value of the last one shows at once.
   const size_t count = vary.key.empty() ? 1 : vary.values.size();
-  const int columns = o.cols > 0 ? o.cols : vary.key.empty() ? std::min<int>(4, static_cast<int>(times.size())) : static_cast<int>(times.size());
+  const int columns = o.cols > 0         ? o.cols
+                      : vary.key.empty() ? std::min<int>(4, static_cast<int>(times.size()))
+                                         : static_cast<int>(times.size());
   // The montage's size before any run: a grid too large to write fails only at the end.
   const MontageLayout layout = montage_layout(cell_w, cell_h, static_cast<int>(times.size() * count), columns,
                                               vary.key.empty() ? 1 : 2, !o.title.empty(), MontageColorbar{});

@@ -77,8 +77,9 @@ void refuse_removing_input(const fs::path& entry, const std::string& input) {
   const bool inside = fs::is_directory(fs::symlink_status(entry, ec)) && in.parent_path() == e &&
                       is_frame_file(entry.filename().string(), in.filename().string());
   if (in == e || inside)
-    throw OutputError(entry.string() + ": --overwrite would delete the scene file " + input +
-                      " (it is a previous run's file there); move the scene out of the output directory or choose another -o");
+    throw OutputError(
+        entry.string() + ": --overwrite would delete the scene file " + input +
+        " (it is a previous run's file there); move the scene out of the output directory or choose another -o");
 }
 
 void check_writable(const fs::path& dir) {
@@ -91,8 +92,9 @@ void check_writable(const fs::path& dir) {
 }  // namespace
 
 std::vector<std::string> previous_run_files(const std::string& scene_name) {
-  std::vector<std::string> names = {"stats.csv", "stats.csv.tmp", "summary.json", "summary.json.tmp", "frames",
-                                    "particles", "ffmpeg.log",    "checkpoints",      "timing.json",      "timing.json.tmp"};
+  std::vector<std::string> names = {"stats.csv",   "stats.csv.tmp",  "summary.json", "summary.json.tmp",
+                                    "frames",      "particles",      "ffmpeg.log",   "checkpoints",
+                                    "timing.json", "timing.json.tmp"};
   for (const render::VideoFormat f : {render::VideoFormat::mp4, render::VideoFormat::webm, render::VideoFormat::gif}) {
     render::VideoJob video;
     video.format = f;
@@ -103,7 +105,8 @@ std::vector<std::string> previous_run_files(const std::string& scene_name) {
   return names;
 }
 
-void prepare_output_directory(const fs::path& dir, bool overwrite, const std::string& scene_name, const std::string& input) {
+void prepare_output_directory(const fs::path& dir, bool overwrite, const std::string& scene_name,
+                              const std::string& input) {
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw OutputError(dir.string() + ": output directory exists and is not a directory");

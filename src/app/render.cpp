@@ -36,15 +36,18 @@ namespace {
 // The frame names of --frame-pattern: one integer conversion (%d or %0Nd, N <= 9), a
 // .png name without a folder; ffmpeg reads the same pattern back. Throws FlagError.
 void check_frame_pattern(const std::string& p) {
-  const char* allowed = "expected a PNG file name with one %d or %0Nd (N <= 9) for the frame number, e.g. frame_%05d.png";
+  const char* allowed =
+      "expected a PNG file name with one %d or %0Nd (N <= 9) for the frame number, e.g. frame_%05d.png";
   const size_t pct = p.find('%');
   if (pct == std::string::npos || p.find('/') != std::string::npos || !p.ends_with(".png"))
     throw FlagError("--frame-pattern", p, allowed);
   size_t k = pct + 1;
   if (k < p.size() && p[k] == '0') {
     ++k;
-    if (k < p.size() && p[k] >= '1' && p[k] <= '9') ++k;
-    else throw FlagError("--frame-pattern", p, allowed);
+    if (k < p.size() && p[k] >= '1' && p[k] <= '9')
+      ++k;
+    else
+      throw FlagError("--frame-pattern", p, allowed);
   }
   if (k >= p.size() || p[k] != 'd' || p.find('%', k) != std::string::npos)
     throw FlagError("--frame-pattern", p, allowed);
@@ -118,14 +121,9 @@ struct RenderTiming {
 };
 
 void write_timing(const fs::path& dir, const RenderTiming& t) {
-  const nlohmann::json j = {{"frames", t.frames},
-                            {"total_s", t.total},
-                            {"simulation_s", t.simulation},
-                            {"drawing_s", t.drawing},
-                            {"png_s", t.png},
-                            {"png_wait_s", t.png_wait},
-                            {"exports_s", t.exports},
-                            {"video_s", t.video}};
+  const nlohmann::json j = {{"frames", t.frames},     {"total_s", t.total}, {"simulation_s", t.simulation},
+                            {"drawing_s", t.drawing}, {"png_s", t.png},     {"png_wait_s", t.png_wait},
+                            {"exports_s", t.exports}, {"video_s", t.video}};
   write_file_atomic((dir / "timing.json").string(), j.dump(2) + "\n");
 }
 
@@ -233,7 +231,8 @@ int run_render(const RenderOptions& given) {
   };
   // A resumed run's PNGs before the checkpoint's frame were written by the earlier run.
   const long earlier =
-      control.resume ? std::max<long>(0, std::min<long>(last, control.resume->checkpoint.state.frame - 1) - first + 1) : 0;
+      control.resume ? std::max<long>(0, std::min<long>(last, control.resume->checkpoint.state.frame - 1) - first + 1)
+                     : 0;
   const auto run_start = std::chrono::steady_clock::now();
   run_scene(scene, dir, o.quiet, on_frame, control,
             FrameOutput{[&] { writer.wait(); }, [&] { return earlier + writer.written(); }});
@@ -288,7 +287,8 @@ int run_still(const StillOptions& o) {
     throw FlagError("--time", number_text(o.time),
                     "the time is after the scene's end; allowed: 0 to time.duration = " + number_text(duration) + " s");
   if (o.time > 0 && o.time < kMinDuration)
-    throw FlagError("--time", number_text(o.time), "allowed: 0, or " + number_text(kMinDuration) + " s to time.duration");
+    throw FlagError("--time", number_text(o.time),
+                    "allowed: 0, or " + number_text(kMinDuration) + " s to time.duration");
   if (o.time > 0) overrides.push_back(number_override("time.duration", o.time));
   const Scene scene = load_scene(o.scene, overrides);
   const ImageConfig config = resolve_image(o.image, scene);

@@ -26,8 +26,7 @@ json read_record(const std::string& dir, const std::string& command) {
   const fs::path path = record_path(dir);
   std::ifstream in(path);
   if (!in)
-    throw CheckpointError(path.string() + " cannot be read: " + dir +
-                         " holds no run started with --checkpoint-every");
+    throw CheckpointError(path.string() + " cannot be read: " + dir + " holds no run started with --checkpoint-every");
   json r;
   try {
     r = json::parse(in);
@@ -54,8 +53,8 @@ void from_record(const std::string& dir, F&& read) {
 }  // namespace
 
 json run_record(const SimulateOptions& o) {
-  return {{"command", "simulate"},   {"scene", absolute_scene(o.scene)}, {"duration", o.duration},
-          {"set", o.set},            {"exports", o.exports},             {"checkpoint_every", o.checkpoint_every}};
+  return {{"command", "simulate"}, {"scene", absolute_scene(o.scene)},      {"duration", o.duration}, {"set", o.set},
+          {"exports", o.exports},  {"checkpoint_every", o.checkpoint_every}};
 }
 
 json run_record(const RenderOptions& o) {

@@ -10,8 +10,8 @@
 #include <optional>
 
 #include "app/commands.h"
-#include "app/interrupt.h"
 #include "app/eta.h"
+#include "app/interrupt.h"
 #include "app/output_dir.h"
 #include "app/resume.h"
 #include "app/run.h"
@@ -71,7 +71,8 @@ double memory_limit(std::string& what) {
   const double pages = static_cast<double>(sysconf(_SC_PHYS_PAGES)), page = static_cast<double>(sysconf(_SC_PAGESIZE));
   double limit = pages > 0 && page > 0 ? pages * page : HUGE_VAL;
   what = "physical memory";
-  for (const auto& [resource, name] : {std::pair{RLIMIT_AS, "RLIMIT_AS (ulimit -v)"}, std::pair{RLIMIT_DATA, "RLIMIT_DATA (ulimit -d)"}}) {
+  for (const auto& [resource, name] :
+       {std::pair{RLIMIT_AS, "RLIMIT_AS (ulimit -v)"}, std::pair{RLIMIT_DATA, "RLIMIT_DATA (ulimit -d)"}}) {
     rlimit rl{};
     if (getrlimit(resource, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && static_cast<double>(rl.rlim_cur) < limit) {
       limit = static_cast<double>(rl.rlim_cur);
@@ -149,12 +150,16 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
   make_directory(dir);
   const bool tty = isatty(fileno(stderr)) && !quiet;
   if (!quiet)
-    std::fprintf(stderr, "sluice: %s: %zu fluid particles (%d removed inside boundaries), %zu boundary particles, %s, %d threads\n",
-                 scene.file.c_str(), scene.fluid_x.size(), scene.fluid_removed, scene.boundary_x.size(),
-                 to_string(scene.solver.type), omp_get_max_threads());
+    std::fprintf(
+        stderr,
+        "sluice: %s: %zu fluid particles (%d removed inside boundaries), %zu boundary particles, %s, %d threads\n",
+        scene.file.c_str(), scene.fluid_x.size(), scene.fluid_removed, scene.boundary_x.size(),
+        to_string(scene.solver.type), omp_get_max_threads());
   if (!quiet && scene.fluid_near_samples > 0)
-    std::fprintf(stderr, "sluice: note: %d of the removed fluid particles were closer than %g spacings to a boundary sample "
-                 "(they would start compressed)\n", scene.fluid_near_samples, shapes::kMinSampleDistance);
+    std::fprintf(stderr,
+                 "sluice: note: %d of the removed fluid particles were closer than %g spacings to a boundary sample "
+                 "(they would start compressed)\n",
+                 scene.fluid_near_samples, shapes::kMinSampleDistance);
   if (!quiet && scene.time.settle > 0)
     std::fprintf(stderr, "sluice: settling for %g s before t = 0 (time.settle)\n", scene.time.settle);
 
@@ -254,8 +259,11 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     const std::string message = "interrupted by " + signal_name(signal) + " " + where + "; stats.csv, summary.json" +
                                 (resumable ? ", the checkpoints" : "") + " and the output up to frame " +
                                 std::to_string(sim.frame()) + " are kept in " + dir.string() + "; " + how;
-    summary["interrupted"] = {{"signal", signal_name(signal)}, {"step", sim.steps()}, {"time", sim.time()},
-                              {"resume", resumable ? nlohmann::json(resume_command(control.command, dir)) : nlohmann::json(nullptr)}};
+    summary["interrupted"] = {
+        {"signal", signal_name(signal)},
+        {"step", sim.steps()},
+        {"time", sim.time()},
+        {"resume", resumable ? nlohmann::json(resume_command(control.command, dir)) : nlohmann::json(nullptr)}};
     finish_files("interrupted", message);
     throw Interrupted(signal, message);
   };
@@ -283,7 +291,8 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
       eta_estimate.add(wall, sim.time());
       const std::optional<double> eta = eta_estimate.seconds_left(scene.time.duration);
       if (tty) {
-        std::fprintf(stderr, "\r  t = %.3f / %.3f s   frame %d / %d   step %ld   iterations %d   error %.3f%%   ETA %s   ",
+        std::fprintf(stderr,
+                     "\r  t = %.3f / %.3f s   frame %d / %d   step %ld   iterations %d   error %.3f%%   ETA %s   ",
                      sim.time(), scene.time.duration, st.frame, sim.frame_count(), st.step, st.iterations,
                      st.avg_error_percent, clock_string(eta).c_str());
       } else if (!quiet && (st.frame % 10 == 0 || st.frame == sim.frame_count())) {

@@ -23,9 +23,9 @@ int run_suite(const SuiteOptions& o) {
     for (SolverType s : c.solvers) {
       if ((s == SolverType::IISPH && o.solver == "wcsph") || (s == SolverType::WCSPH && o.solver == "iisph")) continue;
       const analysis::CaseResult r = analysis::run_case(c, dir, s, o.quick);
-      std::printf("%-18s %-6s %7.3f %6ld %6.2f %8.4f %10.4f %6.2f %7ld  %-13s  %s\n", r.name.c_str(),
-                  r.solver.c_str(), r.simulated, r.steps, r.avg_iterations, r.avg_error, r.max_density_error, r.bound,
-                  r.leaks, analysis::outcome_name(r.result), r.outcome.c_str());
+      std::printf("%-18s %-6s %7.3f %6ld %6.2f %8.4f %10.4f %6.2f %7ld  %-13s  %s\n", r.name.c_str(), r.solver.c_str(),
+                  r.simulated, r.steps, r.avg_iterations, r.avg_error, r.max_density_error, r.bound, r.leaks,
+                  analysis::outcome_name(r.result), r.outcome.c_str());
       if (c.resting)
         std::printf("%-18s %-6s   kinetic energy peak %.4g J/m, end %.4g J/m; centre of mass moved %.2e m\n", "", "",
                     r.ke_peak, r.ke_end, r.drift);

@@ -15,7 +15,8 @@ namespace sluice::app {
 class ThreadGovernor {
  public:
   // max_threads <= 1, or fixed = true: the governor leaves the count alone.
-  ThreadGovernor(int max_threads, bool fixed) : max_(max_threads), best_(max_threads), active_(!fixed && max_threads > 1) {}
+  ThreadGovernor(int max_threads, bool fixed)
+      : max_(max_threads), best_(max_threads), active_(!fixed && max_threads > 1) {}
 
   // Around Simulation::step(): before_step() sets the count for the step, after_step()
   // takes its wall time and pressure iterations (a step's work is about proportional to
@@ -69,7 +70,7 @@ class ThreadGovernor {
   long steps_on_max() const { return steps_at_[1]; }
 
  private:
-  static constexpr std::size_t kTrial = 8;   // steps per comparison
+  static constexpr std::size_t kTrial = 8;    // steps per comparison
   static constexpr long kFirstInterval = 32;  // steps between probes, doubled up to kMaxInterval
   static constexpr long kMaxInterval = 2048;
 

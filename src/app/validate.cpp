@@ -22,8 +22,10 @@ namespace fs = std::filesystem;
 namespace {
 
 void report_figure(const std::string& why, const fs::path& png) {
-  if (why.empty()) std::printf("figure: %s\n", png.string().c_str());
-  else std::fprintf(stderr, "sluice: warning: no figure: %s (the CSV is written)\n", why.c_str());
+  if (why.empty())
+    std::printf("figure: %s\n", png.string().c_str());
+  else
+    std::fprintf(stderr, "sluice: warning: no figure: %s (the CSV is written)\n", why.c_str());
 }
 
 // "iisph_mirroring" -> "IISPH, mirroring" for a legend.
@@ -58,7 +60,8 @@ int validate_shipped_tank(const ValidateOptions& o, std::string& csv) {
   const std::string file = "scenes/hydrostatic.json";
   const analysis::RestBounds bounds;
   std::printf("shipped tank %s with its defaults, pressure averaged over the last 0.5 s\n", file.c_str());
-  std::printf("%-6s %6s %14s %14s %14s  %s\n", "solver", "steps", "median_m/s", "lower_half_%", "bottom_row_%", "result");
+  std::printf("%-6s %6s %14s %14s %14s  %s\n", "solver", "steps", "median_m/s", "lower_half_%", "bottom_row_%",
+              "result");
   int failed = 0;
   for (const auto& solver : solvers_of(o)) {
     std::vector<std::string> set{"solver.type=" + solver};
@@ -92,7 +95,9 @@ int validate_hydrostatic(const ValidateOptions& o, const fs::path& dir) {
   std::printf("%-22s %6s %7s %11s %9s %11s %9s %11s  %s\n", "case", "steps", "capped", "worst_bin_%", "at_d_m",
               "bin_tol_%", "slope_%", "slope_tol_%", "result");
   std::string profile = "case,depth_m,pressure,ratio,samples\n";
-  std::string summary = "case,steps,capped,surface_m,worst_bin_error,worst_depth_m,bin_tolerance,slope_error,slope_tolerance,floor_ratio,passed\n";
+  std::string summary =
+      "case,steps,capped,surface_m,worst_bin_error,worst_depth_m,bin_tolerance,slope_error,slope_tolerance,floor_ratio,"
+      "passed\n";
   std::vector<std::string> names;
   int failed = 0;
   for (const auto& c : analysis::hydrostatic_cases()) {
@@ -108,11 +113,15 @@ int validate_hydrostatic(const ValidateOptions& o, const fs::path& dir) {
     failed += !ok;
     std::printf("%-22s %6ld %7ld %11.2f %9.3f %11.1f %9.2f %11.1f  %s\n", c.name.c_str(), r.steps, r.capped,
                 100 * r.worst_bin_error, r.worst_depth, 100 * c.bin_tolerance, 100 * r.slope_error,
-                100 * c.slope_tolerance, ok ? "ok" : c.known_limit ? "FAILED (known limit)" : "FAILED");
+                100 * c.slope_tolerance,
+                ok              ? "ok"
+                : c.known_limit ? "FAILED (known limit)"
+                                : "FAILED");
     std::fflush(stdout);
     for (const auto& b : r.bins) {
       char line[256];
-      std::snprintf(line, sizeof line, "%s,%.6f,%.6f,%.6f,%ld\n", c.name.c_str(), b.depth, b.pressure, b.ratio, b.samples);
+      std::snprintf(line, sizeof line, "%s,%.6f,%.6f,%.6f,%ld\n", c.name.c_str(), b.depth, b.pressure, b.ratio,
+                    b.samples);
       profile += line;
     }
     char line[512];
@@ -122,7 +131,8 @@ int validate_hydrostatic(const ValidateOptions& o, const fs::path& dir) {
     summary += line;
     names.push_back(c.name);
   }
-  if (names.empty()) throw view::FlagError("--case", o.only, "iisph_ or wcsph_ followed by extrapolation, mirroring or zero");
+  if (names.empty())
+    throw view::FlagError("--case", o.only, "iisph_ or wcsph_ followed by extrapolation, mirroring or zero");
   write_file_atomic((dir / "hydrostatic_profile.csv").string(), profile);
   write_file_atomic((dir / "hydrostatic.csv").string(), summary);
   // p/(rho0 g d) against depth, one line per case: 1 is the exact answer.
@@ -140,7 +150,8 @@ int validate_hydrostatic(const ValidateOptions& o, const fs::path& dir) {
   std::string script = gp.str();
   script.insert(0, "set datafile missing \"NaN\"\n");
   report_figure(analysis::run_gnuplot((dir / "hydrostatic.gp").string(), script), dir / "hydrostatic.png");
-  std::printf("wrote %s, %s\n", (dir / "hydrostatic.csv").string().c_str(), (dir / "hydrostatic_profile.csv").string().c_str());
+  std::printf("wrote %s, %s\n", (dir / "hydrostatic.csv").string().c_str(),
+              (dir / "hydrostatic_profile.csv").string().c_str());
   return failed + shipped_failed ? 1 : 0;
 }
 
@@ -150,8 +161,8 @@ int validate_thin_plate(const ValidateOptions& o, const fs::path& dir) {
   const std::string file = o.scene.empty() ? "scenes/hard/thin_plate.json" : o.scene;
   const double bound = 0.005;
   std::printf("thin plate %s with its defaults: median speed at the end (bound %g m/s)\n", file.c_str(), bound);
-  std::printf("%-6s %6s %7s %12s %12s %14s  %s\n", "solver", "steps", "iter", "median_m/s", "max_m/s", "energy_drift_J/m",
-              "result");
+  std::printf("%-6s %6s %7s %12s %12s %14s  %s\n", "solver", "steps", "iter", "median_m/s", "max_m/s",
+              "energy_drift_J/m", "result");
   std::string csv = "solver,steps,avg_iterations,median_speed_m_s,max_speed_m_s,energy_drift_J_per_m,passed\n";
   int failed = 0;
   for (const auto& solver : solvers_of(o)) {
@@ -161,8 +172,8 @@ int validate_thin_plate(const ValidateOptions& o, const fs::path& dir) {
     const auto r = analysis::run_at_rest(load_scene(file, set));
     const bool ok = r.median_speed_end <= bound;
     failed += !ok;
-    std::printf("%-6s %6ld %7.2f %12.5f %12.5f %14.4f  %s\n", solver.c_str(), r.steps, r.avg_iterations, r.median_speed_end,
-                r.max_speed_end, r.energy_drift, ok ? "ok" : "FAILED");
+    std::printf("%-6s %6ld %7.2f %12.5f %12.5f %14.4f  %s\n", solver.c_str(), r.steps, r.avg_iterations,
+                r.median_speed_end, r.max_speed_end, r.energy_drift, ok ? "ok" : "FAILED");
     std::fflush(stdout);
     char line[256];
     std::snprintf(line, sizeof line, "%s,%ld,%.3f,%.6f,%.6f,%.6f,%d\n", solver.c_str(), r.steps, r.avg_iterations,
@@ -201,7 +212,8 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
   const std::string instant_file = o.scene.empty() ? "scenes/validation/dam_break_martin_moyce.json" : o.scene;
   const std::string gate_file = "scenes/validation/dam_break_gate.json";
   const std::vector<std::string> solvers = solvers_of(o);
-  const std::vector<double> spacings = o.spacing > 0 ? std::vector<double>{o.spacing} : std::vector<double>{0.04, 0.02, 0.01};
+  const std::vector<double> spacings =
+      o.spacing > 0 ? std::vector<double>{o.spacing} : std::vector<double>{0.04, 0.02, 0.01};
   struct Run {
     std::string solver, release, label;
     double h;
@@ -220,27 +232,30 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
     const auto& r = run.r;
     const bool ok = r.rms_relative_error <= o.max_rms;
     failed += !ok;
-    std::printf("%-7s %-8s %6.3f %9zu %7ld %6.2f %10.2f %8.1f  %s\n", solver.c_str(), release.c_str(), h, scene.fluid_x.size(),
-                r.steps, r.avg_iterations, 100 * r.rms_relative_error, r.wall_seconds, ok ? "ok" : "FAILED");
+    std::printf("%-7s %-8s %6.3f %9zu %7ld %6.2f %10.2f %8.1f  %s\n", solver.c_str(), release.c_str(), h,
+                scene.fluid_x.size(), r.steps, r.avg_iterations, 100 * r.rms_relative_error, r.wall_seconds,
+                ok ? "ok" : "FAILED");
     std::fflush(stdout);
     for (const auto& f : r.front) {
       char line[256];
-      std::snprintf(line, sizeof line, "%s,%s,%s,%g,%.6f,%.6f,%.6f,%.6f\n", run.label.c_str(), solver.c_str(), release.c_str(), h,
-                    f.t, f.T, f.z, f.Z);
+      std::snprintf(line, sizeof line, "%s,%s,%s,%g,%.6f,%.6f,%.6f,%.6f\n", run.label.c_str(), solver.c_str(),
+                    release.c_str(), h, f.t, f.T, f.z, f.Z);
       series += line;
     }
     for (const auto& p : r.compared) {
       char line[256];
-      std::snprintf(line, sizeof line, "%s,%s,%s,%g,%.4f,%.4f,%.4f,%.6f\n", run.label.c_str(), solver.c_str(), release.c_str(), h,
-                    p.T, p.Z_experiment, p.Z_simulated, p.relative_error);
+      std::snprintf(line, sizeof line, "%s,%s,%s,%g,%.4f,%.4f,%.4f,%.6f\n", run.label.c_str(), solver.c_str(),
+                    release.c_str(), h, p.T, p.Z_experiment, p.Z_simulated, p.relative_error);
       points += line;
     }
     runs.push_back(std::move(run));
   };
-  std::printf("dam break against Martin & Moyce (1952), n^2 = 2: RMS relative front error over the measured points "
-              "(bound %.0f %%)\n", 100 * o.max_rms);
-  std::printf("%-7s %-8s %6s %9s %7s %6s %10s %8s  %s\n", "solver", "release", "h_m", "particles", "steps", "iter", "rms_%",
-              "wall_s", "result");
+  std::printf(
+      "dam break against Martin & Moyce (1952), n^2 = 2: RMS relative front error over the measured points "
+      "(bound %.0f %%)\n",
+      100 * o.max_rms);
+  std::printf("%-7s %-8s %6s %9s %7s %6s %10s %8s  %s\n", "solver", "release", "h_m", "particles", "steps", "iter",
+              "rms_%", "wall_s", "result");
   for (const auto& solver : solvers) {
     for (double h : spacings) run_one(solver, "instant", instant_file, h);
     if (o.scene.empty()) run_one(solver, "gate", gate_file, o.spacing > 0 ? o.spacing : 0.02);
@@ -278,17 +293,19 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
      << analysis::gnuplot_png_preamble("dam_break_front.png")
      << "set title \"Dam break surge front against Martin and Moyce (1952), n^2 = 2\"\n"
         "set xlabel \"T = t (2g/a)^{1/2}\"\nset ylabel \"Z = z / a\"\nset key top left\n"
-        "plot \"martin_moyce_1952.csv\" using 1:2 skip 1 with points pt 7 ps 1.5 lc rgb \"black\" title \"experiment (a = 2.25 in)\"";
+        "plot \"martin_moyce_1952.csv\" using 1:2 skip 1 with points pt 7 ps 1.5 lc rgb \"black\" title \"experiment "
+        "(a = 2.25 in)\"";
   for (const Run& r : runs) {
-    const std::string title = std::string(r.solver == "iisph" ? "IISPH" : "WCSPH") + ", " + r.release + ", h = " + number_text(r.h);
+    const std::string title =
+        std::string(r.solver == "iisph" ? "IISPH" : "WCSPH") + ", " + r.release + ", h = " + number_text(r.h);
     gp << ", \"dam_break_front.csv\" using 6:(strcol(1) eq " << analysis::gnuplot_quote(r.label)
-       << " ? $8 : NaN) with lines lw 2 " << (r.release == "gate" ? "dt 2 " : "") << "title " << analysis::gnuplot_quote(title)
-       << " noenhanced";
+       << " ? $8 : NaN) with lines lw 2 " << (r.release == "gate" ? "dt 2 " : "") << "title "
+       << analysis::gnuplot_quote(title) << " noenhanced";
   }
   gp << "\n";
   report_figure(analysis::run_gnuplot((dir / "dam_break_front.gp").string(), gp.str()), dir / "dam_break_front.png");
-  std::printf("wrote %s, %s, %s\n", (dir / "dam_break_front.csv").string().c_str(), (dir / "dam_break_points.csv").string().c_str(),
-              (dir / "dam_break_differences.csv").string().c_str());
+  std::printf("wrote %s, %s, %s\n", (dir / "dam_break_front.csv").string().c_str(),
+              (dir / "dam_break_points.csv").string().c_str(), (dir / "dam_break_differences.csv").string().c_str());
   return failed ? 1 : 0;
 }
 
@@ -297,12 +314,16 @@ int validate_elliptical_drop(const ValidateOptions& o, const fs::path& dir) {
   const std::string scene_file = o.scene.empty() ? "scenes/validation/elliptical_drop.json" : o.scene;
   const std::vector<std::string> solvers = solvers_of(o);
   const double A0 = analysis::kEllipticalDropA0, bound = analysis::kEllipticalDropBound;
-  std::printf("elliptical drop %s: u = -A0 x, v = A0 y with A0 = %g 1/s; semi-axes from the second moments against "
-              "Monaghan's (1994) ODE\n", scene_file.c_str(), A0);
+  std::printf(
+      "elliptical drop %s: u = -A0 x, v = A0 y with A0 = %g 1/s; semi-axes from the second moments against "
+      "Monaghan's (1994) ODE\n",
+      scene_file.c_str(), A0);
   std::printf("%-6s %9s %6s %6s %9s %9s %9s %9s %8s %8s  %s\n", "solver", "particles", "steps", "t_s", "a_sim", "a_ode",
               "b_sim", "b_ode", "error_%", "bound_%", "result");
   std::string series = "solver,t_s,a_sim_m,a_ode_m,b_sim_m,b_ode_m,a_rel_error,b_rel_error,xy_correlation\n";
-  std::string summary = "solver,spacing_m,particles,steps,avg_iterations,wall_s,t_end_s,a_sim_m,a_ode_m,b_sim_m,b_ode_m,a_error,b_error,bound,passed\n";
+  std::string summary =
+      "solver,spacing_m,particles,steps,avg_iterations,wall_s,t_end_s,a_sim_m,a_ode_m,b_sim_m,b_ode_m,a_error,b_error,"
+      "bound,passed\n";
   int failed = 0;
   for (const auto& solver : solvers) {
     std::vector<std::string> base{"solver.type=" + solver};
@@ -322,8 +343,8 @@ int validate_elliptical_drop(const ValidateOptions& o, const fs::path& dir) {
     const auto& e = r.series.back();
     const bool ok = r.error <= bound;
     failed += !ok;
-    std::printf("%-6s %9ld %6ld %6.3f %9.5f %9.5f %9.5f %9.5f %8.3f %8.1f  %s\n", solver.c_str(), r.particles, r.steps, e.t,
-                e.a_sim, e.a_ode, e.b_sim, e.b_ode, 100 * r.error, 100 * bound, ok ? "ok" : "FAILED");
+    std::printf("%-6s %9ld %6ld %6.3f %9.5f %9.5f %9.5f %9.5f %8.3f %8.1f  %s\n", solver.c_str(), r.particles, r.steps,
+                e.t, e.a_sim, e.a_ode, e.b_sim, e.b_ode, 100 * r.error, 100 * bound, ok ? "ok" : "FAILED");
     std::printf("       h = %g m, R0 = %.4f m, %.1f s, %.2f iterations/step, max speed at the end %.3f m/s", r.h, r.R0,
                 r.wall_seconds, r.avg_iterations, r.max_speed_end);
     if (solver == "wcsph") std::printf(", k = %.4g Pa m, dt = %.4g s", scene.solver.stiffness, scene.time.dt);
@@ -331,14 +352,14 @@ int validate_elliptical_drop(const ValidateOptions& o, const fs::path& dir) {
     std::fflush(stdout);
     for (const auto& p : r.series) {
       char line[256];
-      std::snprintf(line, sizeof line, "%s,%.6f,%.7f,%.7f,%.7f,%.7f,%.7f,%.7f,%.6f\n", solver.c_str(), p.t, p.a_sim, p.a_ode,
-                    p.b_sim, p.b_ode, p.a_sim / p.a_ode - 1, p.b_sim / p.b_ode - 1, p.xy_moment);
+      std::snprintf(line, sizeof line, "%s,%.6f,%.7f,%.7f,%.7f,%.7f,%.7f,%.7f,%.6f\n", solver.c_str(), p.t, p.a_sim,
+                    p.a_ode, p.b_sim, p.b_ode, p.a_sim / p.a_ode - 1, p.b_sim / p.b_ode - 1, p.xy_moment);
       series += line;
     }
     char line[512];
-    std::snprintf(line, sizeof line, "%s,%g,%ld,%ld,%.3f,%.2f,%.6f,%.7f,%.7f,%.7f,%.7f,%.6f,%.6f,%.3f,%d\n", solver.c_str(), r.h,
-                  r.particles, r.steps, r.avg_iterations, r.wall_seconds, e.t, e.a_sim, e.a_ode, e.b_sim, e.b_ode, r.a_error,
-                  r.b_error, bound, ok ? 1 : 0);
+    std::snprintf(line, sizeof line, "%s,%g,%ld,%ld,%.3f,%.2f,%.6f,%.7f,%.7f,%.7f,%.7f,%.6f,%.6f,%.3f,%d\n",
+                  solver.c_str(), r.h, r.particles, r.steps, r.avg_iterations, r.wall_seconds, e.t, e.a_sim, e.a_ode,
+                  e.b_sim, e.b_ode, r.a_error, r.b_error, bound, ok ? 1 : 0);
     summary += line;
   }
   write_file_atomic((dir / "elliptical_drop_axes.csv").string(), series);
@@ -349,11 +370,15 @@ int validate_elliptical_drop(const ValidateOptions& o, const fs::path& dir) {
   gp << "set datafile missing \"NaN\"\n"
      << analysis::gnuplot_png_preamble("elliptical_drop.png", 1200, 1200)
      << "f = \"elliptical_drop_axes.csv\"\nset multiplot layout 2,1\n"
-        "set title \"Elliptical drop (Monaghan 1994), A_0 = " << A0 << " 1/s: semi-axes from the second moments\"\n"
+        "set title \"Elliptical drop (Monaghan 1994), A_0 = "
+     << A0
+     << " 1/s: semi-axes from the second moments\"\n"
         "set xlabel \"t [s]\"\nset ylabel \"semi-axis [m]\"\nset key top left width 2\n"
-        "plot f using 2:(strcol(1) eq " << analysis::gnuplot_quote(solvers.front())
+        "plot f using 2:(strcol(1) eq "
+     << analysis::gnuplot_quote(solvers.front())
      << " ? $6 : NaN) skip 1 with lines lc rgb \"black\" title \"b, exact\", "
-        "f using 2:(strcol(1) eq " << analysis::gnuplot_quote(solvers.front())
+        "f using 2:(strcol(1) eq "
+     << analysis::gnuplot_quote(solvers.front())
      << " ? $4 : NaN) skip 1 with lines lc rgb \"black\" dt 2 title \"a, exact\"";
   auto style = [](const std::string& s) {
     return std::string(s == "iisph" ? " pt 6 ps 1.5 lc rgb \"#1f77b4\"" : " pt 4 ps 1.5 lc rgb \"#d62728\"");
@@ -361,8 +386,8 @@ int validate_elliptical_drop(const ValidateOptions& o, const fs::path& dir) {
   auto label = [](const std::string& s) { return std::string(s == "iisph" ? "IISPH" : "WCSPH"); };
   for (const auto& s : solvers)
     gp << ", f using 2:(strcol(1) eq " << analysis::gnuplot_quote(s) << " ? $5 : NaN) skip 1 with points" << style(s)
-       << " title " << analysis::gnuplot_quote("b, " + label(s)) << ", f using 2:(strcol(1) eq " << analysis::gnuplot_quote(s)
-       << " ? $3 : NaN) skip 1 with points" << style(s) << " notitle";
+       << " title " << analysis::gnuplot_quote("b, " + label(s)) << ", f using 2:(strcol(1) eq "
+       << analysis::gnuplot_quote(s) << " ? $3 : NaN) skip 1 with points" << style(s) << " notitle";
   gp << "\nset title \"relative error of the semi-axes (a: dashed, b: solid)\"\nset ylabel \"error [%]\"\n"
         "set yrange [*<-1.5:1.5<*]\nset key bottom left width 2\n"
      << "plot " << 100 * bound << " with lines lc rgb \"black\" dt 3 title \"bound\", " << -100 * bound

@@ -20,8 +20,8 @@
 namespace sluice::detail {
 
 [[noreturn]] inline void assertion_failed(const char* condition, const char* file, int line, const char* message) {
-  std::fprintf(stderr, "sluice: internal error (a bug, please report it): %s:%d: %s failed: %s\n", file, line, condition,
-               message);
+  std::fprintf(stderr, "sluice: internal error (a bug, please report it): %s:%d: %s failed: %s\n", file, line,
+               condition, message);
   std::fflush(stderr);
   std::abort();
 }

@@ -43,9 +43,7 @@ class CellGrid {
 
  private:
   std::pair<std::int64_t, std::int64_t> cell_of(const Vec2& p) const {
-    auto c = [&](double v) {
-      return static_cast<std::int64_t>(std::clamp(std::floor(v * inv_), -1e15, 1e15));
-    };
+    auto c = [&](double v) { return static_cast<std::int64_t>(std::clamp(std::floor(v * inv_), -1e15, 1e15)); };
     return {c(p.x()), c(p.y())};
   }
   static std::uint64_t key(std::int64_t x, std::int64_t y) {
@@ -72,9 +70,7 @@ bool segments_overlap(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d
   return std::min(std::max(tc, td), 1.0) - std::max(std::min(tc, td), 0.0) > 0;
 }
 
-std::size_t segment_count(std::size_t points, bool closed) {
-  return closed ? points : (points > 0 ? points - 1 : 0);
-}
+std::size_t segment_count(std::size_t points, bool closed) { return closed ? points : (points > 0 ? points - 1 : 0); }
 
 // Where sample k of n lies on a segment, as a fraction of its length: k / n when uniform.
 // Graded: the integral of dv / s(v) up to u is (L / (s1 - s0)) ln(s(u) / s0), so it reaches
@@ -101,8 +97,7 @@ bool point_in_polygon(const std::vector<Vec2>& poly, const Vec2& p) {
   for (std::size_t i = 0, n = poly.size(), j = n - 1; i < n; j = i++) {
     const Vec2& a = poly[i];
     const Vec2& b = poly[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
       inside = !inside;
   }
   return inside;
@@ -137,8 +132,14 @@ double ellipse_perimeter(double a, double b) {
 
 void FluidShape::bounding_box(Vec2& lo, Vec2& hi) const {
   switch (kind) {
-    case Kind::Rectangle: lo = min; hi = max; return;
-    case Kind::Ellipse: lo = center - radii; hi = center + radii; return;
+    case Kind::Rectangle:
+      lo = min;
+      hi = max;
+      return;
+    case Kind::Ellipse:
+      lo = center - radii;
+      hi = center + radii;
+      return;
     case Kind::Polygon:
       lo = hi = points.front();
       for (const Vec2& p : points) {
@@ -151,12 +152,14 @@ void FluidShape::bounding_box(Vec2& lo, Vec2& hi) const {
 
 bool FluidShape::contains(const Vec2& p) const {
   switch (kind) {
-    case Kind::Rectangle: return true;  // the lattice covers exactly [min, max]
+    case Kind::Rectangle:
+      return true;  // the lattice covers exactly [min, max]
     case Kind::Ellipse: {
       const Vec2 q = (p - center).cwiseQuotient(radii);
       return q.squaredNorm() <= 1.0;
     }
-    case Kind::Polygon: return point_in_polygon(points, p);
+    case Kind::Polygon:
+      return point_in_polygon(points, p);
   }
   return false;
 }
@@ -189,8 +192,7 @@ std::vector<Vec2> fill_lattice(const FluidShape& shape, double h) {
 std::vector<Vec2> offset_chain(const std::vector<Vec2>& points, bool closed, double distance) {
   const std::size_t n = points.size(), segs = segment_count(n, closed);
   std::vector<Vec2> normal(segs);
-  for (std::size_t i = 0; i < segs; ++i)
-    normal[i] = left_normal((points[(i + 1) % n] - points[i]).normalized());
+  for (std::size_t i = 0; i < segs; ++i) normal[i] = left_normal((points[(i + 1) % n] - points[i]).normalized());
   std::vector<Vec2> out(n);
   for (std::size_t i = 0; i < n; ++i) {
     const bool has_prev = closed || i > 0, has_next = closed || i + 1 < n;
@@ -234,7 +236,8 @@ void sample_ellipse(const Vec2& center, const Vec2& radii, double spacing, std::
   auto at = [&](double t) { return Vec2(center.x() + a * std::cos(t), center.y() + b * std::sin(t)); };
   const long long n_est = std::max(3LL, std::llround(ellipse_perimeter(a, b) / spacing));
   if (std::abs(a - b) <= 1e-12 * std::max(a, b)) {  // circle: uniform in angle is uniform in length
-    for (long long k = 0; k < n_est; ++k) out.push_back(at(two_pi * static_cast<double>(k) / static_cast<double>(n_est)));
+    for (long long k = 0; k < n_est; ++k)
+      out.push_back(at(two_pi * static_cast<double>(k) / static_cast<double>(n_est)));
     return;
   }
   // Arc-length table over the parameter angle, then equal arc-length steps. 16 entries
@@ -245,7 +248,8 @@ void sample_ellipse(const Vec2& center, const Vec2& radii, double spacing, std::
   std::vector<double> length(table + 1, 0.0);
   for (std::size_t j = 1; j <= table; ++j)
     length[j] = length[j - 1] + (at(two_pi * static_cast<double>(j) / static_cast<double>(table)) -
-                                 at(two_pi * static_cast<double>(j - 1) / static_cast<double>(table))).norm();
+                                 at(two_pi * static_cast<double>(j - 1) / static_cast<double>(table)))
+                                    .norm();
   const long long n = std::max(3LL, std::llround(length[table] / spacing));
   std::size_t j = 0;
   for (long long k = 0; k < n; ++k) {
@@ -263,8 +267,7 @@ std::vector<Vec2> BoundaryShape::sample() const {
     const double d = (k + surface_offset) * layer_spacing;
     if (kind != Kind::Ellipse) {
       // Layers go away from the fluid: to the right of travel when the fluid is on the left.
-      sample_chain(d == 0 ? points : offset_chain(points, closed, fluid_left ? -d : d), closed,
-                   segment_spacing, out);
+      sample_chain(d == 0 ? points : offset_chain(points, closed, fluid_left ? -d : d), closed, segment_spacing, out);
     } else {
       const Vec2 r = radii + Vec2::Constant(fluid_inside ? d : -d);
       if (r.minCoeff() <= 0) break;
@@ -331,8 +334,7 @@ bool BoundaryShape::on_solid_side(const Vec2& p, double extra) const {
   return false;
 }
 
-Index remove_covered_fluid(std::vector<Vec2>& x, std::vector<Vec2>& v,
-                           const std::vector<BoundaryShape>& boundaries,
+Index remove_covered_fluid(std::vector<Vec2>& x, std::vector<Vec2>& v, const std::vector<BoundaryShape>& boundaries,
                            const std::vector<Vec2>& samples, double h, Index* near_samples) {
   // Closer than 0.9 h to a sample, a particle starts compressed (its density overshoots
   // rho0) and is blown off the wall at the first step.
@@ -352,10 +354,13 @@ Index remove_covered_fluid(std::vector<Vec2>& x, std::vector<Vec2>& v,
   Index near = 0;
   for (std::size_t i = 0; i < x.size(); ++i) {
     const Vec2 p = x[i];
-    const bool covered =
-        std::any_of(boundaries.begin(), boundaries.end(), [&](const BoundaryShape& b) { return b.on_solid_side(p, 0.5 * h); }) ||
-        curve_grid.any_near(p, [&](Index k) { return point_segment_distance(p, pieces[k].first, pieces[k].second) < r; });
-    const bool close = !covered && sample_grid.any_near(p, [&](Index k) { return (samples[k] - p).squaredNorm() < rs2; });
+    const bool covered = std::any_of(boundaries.begin(), boundaries.end(),
+                                     [&](const BoundaryShape& b) { return b.on_solid_side(p, 0.5 * h); }) ||
+                         curve_grid.any_near(p, [&](Index k) {
+                           return point_segment_distance(p, pieces[k].first, pieces[k].second) < r;
+                         });
+    const bool close =
+        !covered && sample_grid.any_near(p, [&](Index k) { return (samples[k] - p).squaredNorm() < rs2; });
     near += close ? 1 : 0;
     if (covered || close) continue;
     x[kept] = x[i];

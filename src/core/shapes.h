@@ -26,7 +26,7 @@ double ellipse_perimeter(double a, double b);
 struct FluidShape {
   enum class Kind { Rectangle, Ellipse, Polygon };
   Kind kind = Kind::Rectangle;
-  Vec2 min{0, 0}, max{0, 0};      // rectangle
+  Vec2 min{0, 0}, max{0, 0};       // rectangle
   Vec2 center{0, 0}, radii{0, 0};  // ellipse
   std::vector<Vec2> points;        // polygon
   Vec2 velocity{0, 0};
@@ -110,8 +110,7 @@ void sample_ellipse(const Vec2& center, const Vec2& radii, double spacing, std::
 // boundary sample; returns how many. near_samples (when given) gets how many of them
 // were removed only for their distance to a sample.
 constexpr double kMinSampleDistance = 0.9;
-Index remove_covered_fluid(std::vector<Vec2>& x, std::vector<Vec2>& v,
-                           const std::vector<BoundaryShape>& boundaries,
+Index remove_covered_fluid(std::vector<Vec2>& x, std::vector<Vec2>& v, const std::vector<BoundaryShape>& boundaries,
                            const std::vector<Vec2>& samples, double h, Index* near_samples = nullptr);
 
 // Removes points within tol of an earlier point (keeps the first); returns how many.

@@ -31,7 +31,8 @@ inline void write_bytes_atomic(const std::string& path, const void* data, std::s
   for (std::size_t left = size; left > 0 && err == 0;) {
     const ssize_t n = ::write(fd, p, left);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) err = n < 0 ? errno : ENOSPC;
+    if (n <= 0)
+      err = n < 0 ? errno : ENOSPC;
     else {
       p += n;
       left -= static_cast<std::size_t>(n);

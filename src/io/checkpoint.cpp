@@ -28,7 +28,7 @@ namespace {
 
 constexpr char kMagic[8] = {'S', 'L', 'U', 'I', 'C', 'E', 'C', 'K'};
 constexpr size_t kHeaderSize = 8 + 4 + 8 + 8;  // magic, version, scene hash, payload size
-constexpr size_t kTrailerSize = 8;              // checksum
+constexpr size_t kTrailerSize = 8;             // checksum
 
 std::string hex(std::uint64_t v) {
   char buf[32];
@@ -138,8 +138,8 @@ void get_step(Reader& r, StepStats& s) {
     r.get(*d, "last step");
   r.get(s.fluid_particles, "last step");
   r.get(s.frame, "last step");
-  for (double* d : {&s.ms(Phase::Neighbors), &s.ms(Phase::NonPressure), &s.ms(Phase::Pressure),
-                    &s.ms(Phase::Integrate), &s.ms_total, &s.ms(Phase::Boundary)})
+  for (double* d : {&s.ms(Phase::Neighbors), &s.ms(Phase::NonPressure), &s.ms(Phase::Pressure), &s.ms(Phase::Integrate),
+                    &s.ms_total, &s.ms(Phase::Boundary)})
     r.get(*d, "last step");
 }
 

@@ -37,8 +37,8 @@ constexpr std::uint32_t kCheckpointVersion = 2;  // 2: energies in the totals an
 // What a run needs to continue: the simulation's state and the run's own records.
 struct Checkpoint {
   SimulationState state;
-  RunTotals totals;    // summary.json's totals up to state.step (wall_seconds so far)
-  StepStats last_step; // the step that reached state.frame (its frame is drawn again on resume)
+  RunTotals totals;     // summary.json's totals up to state.step (wall_seconds so far)
+  StepStats last_step;  // the step that reached state.frame (its frame is drawn again on resume)
 };
 
 // FNV-1a 64 over `n` bytes, continuing from `h`.

@@ -37,9 +37,12 @@ std::vector<std::string> parse_csv_line(const std::string& line) {
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];
     if (in_quotes) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') cur += '"', ++i;
-      else if (c == '"') in_quotes = false;
-      else cur += c;
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"')
+        cur += '"', ++i;
+      else if (c == '"')
+        in_quotes = false;
+      else
+        cur += c;
     } else if (c == '"') {
       in_quotes = true;
     } else if (c == ',') {
@@ -86,14 +89,15 @@ CsvTable read_csv_table(const std::string& path) {
   CsvTable t;
   t.path = path;
   std::string line;
-  if (!std::getline(in, line) || line.empty()) throw InputError(path + ": line 1: expected a header row of column names");
+  if (!std::getline(in, line) || line.empty())
+    throw InputError(path + ": line 1: expected a header row of column names");
   t.header = parse_csv_line(line);
   for (long n = 2; std::getline(in, line); ++n) {
     if (line.empty()) continue;
     auto f = parse_csv_line(line);
     if (f.size() != t.header.size())
-      throw InputError(path + ": line " + std::to_string(n) + ": " + std::to_string(f.size()) + " fields, the header has " +
-                       std::to_string(t.header.size()));
+      throw InputError(path + ": line " + std::to_string(n) + ": " + std::to_string(f.size()) +
+                       " fields, the header has " + std::to_string(t.header.size()));
     t.rows.push_back(std::move(f));
   }
   return t;

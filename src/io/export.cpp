@@ -76,8 +76,10 @@ class VtpBuilder {
   void scalars(const char* name, const std::vector<T>& v) {
     open(name, std::is_integral_v<T> ? "Int32" : "Float64", 1);
     for (Index k : order_) {
-      if constexpr (std::is_integral_v<T>) append(s_, static_cast<long>(v[k]));
-      else append(s_, static_cast<double>(v[k]));
+      if constexpr (std::is_integral_v<T>)
+        append(s_, static_cast<long>(v[k]));
+      else
+        append(s_, static_cast<double>(v[k]));
       s_ += '\n';
     }
     close();
@@ -123,8 +125,8 @@ std::string particles_csv(const FluidParticles& f) {
   s.reserve(s.size() + static_cast<size_t>(f.size()) * 96);
   char line[256];
   for (Index k : by_id(f)) {
-    std::snprintf(line, sizeof line, "%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", f.id[k], f.x[k].x(), f.x[k].y(),
-                  f.v[k].x(), f.v[k].y(), f.p[k], f.rho[k]);
+    std::snprintf(line, sizeof line, "%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", f.id[k], f.x[k].x(), f.x[k].y(), f.v[k].x(),
+                  f.v[k].y(), f.p[k], f.rho[k]);
     s += line;
   }
   return s;
@@ -150,7 +152,8 @@ std::string boundary_vtp(const BoundaryParticles& b, double time) {
 
 std::string collection_pvd(const std::vector<std::pair<Index, double>>& frames) {
   std::string s =
-      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n<Collection>\n";
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
+      "byte_order=\"LittleEndian\">\n<Collection>\n";
   char line[256];
   for (const auto& [frame, time] : frames) {
     // Every digit of the time: ParaView's animation steps through these values.

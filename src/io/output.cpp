@@ -48,8 +48,8 @@ void StatsCsv::flush() {
 void StatsCsv::write(const StepStats& s) {
   char line[640];
   std::snprintf(line, sizeof line,
-                "%ld,%.9g,%.6g,%d,%.6g,%.6g,%.6g,%.6g,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.10g,%.10g,%.12g,%.10g\n", s.step,
-                s.time, s.dt, s.iterations, s.avg_error_percent, s.max_error_percent, s.density_error_percent,
+                "%ld,%.9g,%.6g,%d,%.6g,%.6g,%.6g,%.6g,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.10g,%.10g,%.12g,%.10g\n",
+                s.step, s.time, s.dt, s.iterations, s.avg_error_percent, s.max_error_percent, s.density_error_percent,
                 s.max_cfl, s.fluid_particles, s.frame, s.ms(Phase::Neighbors), s.ms(Phase::NonPressure),
                 s.ms(Phase::Pressure), s.ms(Phase::Integrate), s.ms_total, s.ms(Phase::Boundary), s.kinetic_energy,
                 s.potential_energy, s.mechanical_energy, s.boundary_work);
@@ -74,8 +74,9 @@ void RunTotals::add(const StepStats& s) {
   max_error = std::max(max_error, s.max_error_percent);
   final_energy = s.mechanical_energy;
   boundary_work += s.boundary_work;
-  const double ms[6] = {s.ms(Phase::Neighbors), s.ms(Phase::NonPressure), s.ms(Phase::Pressure),
-                        s.ms(Phase::Integrate), s.ms_total, s.ms(Phase::Boundary)};
+  const double ms[6] = {
+      s.ms(Phase::Neighbors), s.ms(Phase::NonPressure), s.ms(Phase::Pressure), s.ms(Phase::Integrate), s.ms_total,
+      s.ms(Phase::Boundary)};
   for (int k = 0; k < 6; ++k) sum_ms[k] += ms[k];
 }
 

@@ -7,11 +7,10 @@
 #include <string>
 
 #include "io/atomic_file.h"
-#include "sph/particles.h"
 #include "solver/stats.h"
+#include "sph/particles.h"
 
 namespace sluice {
-
 
 // stats.csv: one row per step; columns documented in docs/cli.md ("Outputs"). The rows go to
 // `path.tmp`, renamed to `path` by finish() when the run has ended (completed, unstable
@@ -55,7 +54,8 @@ struct RunTotals {
   double sum_ms[6] = {0, 0, 0, 0, 0, 0};
   // Mechanical energy at t = 0 (Simulation::mechanical_energy before the first step),
   // after the last step, and the boundaries' work summed over the steps [J/m].
-  double initial_energy = 0, final_energy = 0, boundary_work = 0;  // neighbours, non-pressure, pressure, integration, total, moving boundaries
+  double initial_energy = 0, final_energy = 0,
+         boundary_work = 0;  // neighbours, non-pressure, pressure, integration, total, moving boundaries
 
   void add(const StepStats& s);
   nlohmann::json to_json(long fluid_particles) const;

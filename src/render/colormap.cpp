@@ -19,9 +19,12 @@ std::optional<ColormapName> parse_colormap(const std::string& s) {
 
 const char* to_string(ColormapName c) {
   switch (c) {
-    case ColormapName::spectrum: return "spectrum";
-    case ColormapName::viridis: return "viridis";
-    case ColormapName::turbo: return "turbo";
+    case ColormapName::spectrum:
+      return "spectrum";
+    case ColormapName::viridis:
+      return "viridis";
+    case ColormapName::turbo:
+      return "turbo";
   }
   return "?";
 }
@@ -53,9 +56,9 @@ double poly(const double (&c)[N], double t) {
 Rgbd viridis(double t) {
   static const double r[7] = {0.2777273272234177, 0.1050930431085774, -0.3308618287255563, -4.634230498983486,
                               6.228269936347081,  4.776384997670288,  -5.435455855934631};
-  static const double g[7] = {0.005407344544966578, 1.404613529898575, 0.214847559468213, -5.799100973351585,
+  static const double g[7] = {0.005407344544966578, 1.404613529898575,  0.214847559468213, -5.799100973351585,
                               14.17993336680509,    -13.74514537774601, 4.645852612178535};
-  static const double b[7] = {0.3340998053353061, 1.384590162594685, 0.09509516302823659, -19.33244095627987,
+  static const double b[7] = {0.3340998053353061, 1.384590162594685,  0.09509516302823659, -19.33244095627987,
                               56.69055260068105,  -65.35303263337234, 26.3124352495832};
   return {poly(r, t), poly(g, t), poly(b, t)};
 }
@@ -67,9 +70,7 @@ Rgbd turbo(double t) {
   return {poly(r, t), poly(g, t), poly(b, t)};
 }
 
-std::uint8_t to_byte(double v) {
-  return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
-}
+std::uint8_t to_byte(double v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); }
 
 }  // namespace
 

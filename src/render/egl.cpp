@@ -35,15 +35,24 @@ bool has_extension(const char* list, const char* name) {
 
 std::string egl_error_name(EGLint e) {
   switch (e) {
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+    case EGL_NOT_INITIALIZED:
+      return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+      return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+      return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+      return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG:
+      return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT:
+      return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY:
+      return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH:
+      return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+      return "EGL_BAD_PARAMETER";
     default: {
       char buf[32];
       std::snprintf(buf, sizeof buf, "EGL error 0x%04x", e);
@@ -92,7 +101,8 @@ Candidate try_surfaceless(const char* client_ext, std::vector<std::string>& trie
 
 // Hardware devices first: a device advertising EGL_MESA_device_software is llvmpipe.
 Candidate try_devices(const char* client_ext, std::vector<std::string>& tried) {
-  if (!has_extension(client_ext, "EGL_EXT_platform_device") || !has_extension(client_ext, "EGL_EXT_device_enumeration")) {
+  if (!has_extension(client_ext, "EGL_EXT_platform_device") ||
+      !has_extension(client_ext, "EGL_EXT_device_enumeration")) {
     tried.push_back("device: EGL_EXT_platform_device / EGL_EXT_device_enumeration not supported by this libEGL");
     return {};
   }
@@ -153,8 +163,9 @@ EglContext::EglContext(EglPlatform platform) {
     EGLint count = 0;
     if (!eglChooseConfig(c.display, attribs, &config, 1, &count) || count == 0) fail("eglChooseConfig");
   }
-  const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                                EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+  const EGLint ctx_attribs[] = {
+      EGL_CONTEXT_MAJOR_VERSION,           3,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
   EGLContext ctx = eglCreateContext(c.display, config, EGL_NO_CONTEXT, ctx_attribs);
   if (ctx == EGL_NO_CONTEXT) fail("eglCreateContext (OpenGL 3.3 core)");
   if (!eglMakeCurrent(c.display, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {

@@ -13,7 +13,8 @@
 asm(".section .rodata\n"
     ".balign 16\n"
     "sluice_font_begin:\n"
-    ".incbin \"" SLUICE_FONT_PATH "\"\n"
+    ".incbin \"" SLUICE_FONT_PATH
+    "\"\n"
     "sluice_font_end:\n"
     ".byte 0\n"
     ".previous\n");

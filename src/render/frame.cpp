@@ -14,7 +14,7 @@ namespace {
 constexpr Rgb kWall{150, 150, 150};  // boundary samples without a colour of their own
 constexpr Rgb kInk{25, 25, 25};
 constexpr Rgb kPanel{245, 245, 245};
-constexpr double kMargin = 0.04;   // share of the image left free around the scene
+constexpr double kMargin = 0.04;  // share of the image left free around the scene
 constexpr int kTickTarget = 5;
 // Tick labels are at most this wide (tick_label keeps 4 significant digits or uses an
 // exponent): the strip reserves it whatever the range, so fields line up.

@@ -19,30 +19,30 @@ namespace sluice::render {
 
 struct FrameSettings {
   int width = 1280, height = 720;
-  int msaa = 0;                    // 0 or 4
+  int msaa = 0;  // 0 or 4
   EglPlatform egl = EglPlatform::automatic;
   ColormapName colormap = ColormapName::spectrum;
   std::string field_label = "CFL";  // title above the colorbar
   bool colorbar = true;
-  bool overlay = true;              // the overlay line's row in the top band
-  std::string title;                // a title row in the top band (none when empty)
+  bool overlay = true;  // the overlay line's row in the top band
+  std::string title;    // a title row in the top band (none when empty)
   // The world box to show, centred with the aspect ratio kept; with fit_margin a margin
   // of a few percent of the image surrounds it (the scene's bounds), without it the box
   // touches the image's edges (a view window given in the scene).
   double bounds_min[2] = {0, 0}, bounds_max[2] = {1, 1};
   bool fit_margin = true;
   Rgb background{255, 255, 255};
-  double particle_scale = 1.0;      // disc diameter as a multiple of the spacing
+  double particle_scale = 1.0;  // disc diameter as a multiple of the spacing
 };
 
 struct FrameData {
-  std::span<const double> fluid_xy;          // x0, y0, x1, y1, ... [m]
-  std::span<const float> fluid_value;        // the coloured field, one per fluid particle
+  std::span<const double> fluid_xy;    // x0, y0, x1, y1, ... [m]
+  std::span<const float> fluid_value;  // the coloured field, one per fluid particle
   std::span<const double> boundary_xy;
-  std::span<const Rgb> boundary_rgb;         // one per boundary sample (may be empty: grey)
-  double diameter = 0;                       // disc diameter [m] (the particle spacing)
-  double lo = 0, hi = 1;                     // colour range of fluid_value
-  std::string overlay;                       // text of the overlay line (shown when enabled)
+  std::span<const Rgb> boundary_rgb;  // one per boundary sample (may be empty: grey)
+  double diameter = 0;                // disc diameter [m] (the particle spacing)
+  double lo = 0, hi = 1;              // colour range of fluid_value
+  std::string overlay;                // text of the overlay line (shown when enabled)
 };
 
 // Where things go in the image.

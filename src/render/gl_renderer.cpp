@@ -63,14 +63,18 @@ void check_framebuffer(const char* what) {
 
 struct GlRenderer::Gl {
   GLuint program = 0, vao = 0, quad = 0, instances = 0;
-  GLuint fbo = 0, color = 0;              // single-sampled target read back
-  GLuint msaa_fbo = 0, msaa_color = 0;    // multisampled target resolved into fbo
+  GLuint fbo = 0, color = 0;            // single-sampled target read back
+  GLuint msaa_fbo = 0, msaa_color = 0;  // multisampled target resolved into fbo
   GLint u_world_to_ndc = -1, u_ndc_offset = -1, u_pixel_to_ndc = -1, u_radius_px = -1;
   std::vector<Instance> staging;
 };
 
 GlRenderer::GlRenderer(int width, int height, int msaa, EglPlatform platform)
-    : egl_(std::make_unique<EglContext>(platform)), gl_(std::make_unique<Gl>()), width_(width), height_(height), msaa_(msaa) {
+    : egl_(std::make_unique<EglContext>(platform)),
+      gl_(std::make_unique<Gl>()),
+      width_(width),
+      height_(height),
+      msaa_(msaa) {
   if (width < 1 || height < 1) throw RenderError("image size must be positive");
   GLint max_size = 0;
   glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
@@ -99,7 +103,8 @@ GlRenderer::GlRenderer(int width, int height, int msaa, EglPlatform platform)
   glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, sizeof(Instance), reinterpret_cast<void*>(offsetof(Instance, x)));
   glVertexAttribDivisor(1, 1);
   glEnableVertexAttribArray(2);
-  glVertexAttribPointer(2, 3, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Instance), reinterpret_cast<void*>(offsetof(Instance, r)));
+  glVertexAttribPointer(2, 3, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Instance),
+                        reinterpret_cast<void*>(offsetof(Instance, r)));
   glVertexAttribDivisor(2, 1);
 
   glGenRenderbuffers(1, &g.color);
@@ -151,8 +156,12 @@ void GlRenderer::draw_discs(const ViewWindow& view, double diameter, std::span<c
   Gl& g = *gl_;
   g.staging.resize(n);
   for (size_t i = 0; i < n; ++i)
-    g.staging[i] = {static_cast<float>(xy[2 * i] - view.x0), static_cast<float>(xy[2 * i + 1] - view.y0), colors[i].r,
-                    colors[i].g, colors[i].b, 0};
+    g.staging[i] = {static_cast<float>(xy[2 * i] - view.x0),
+                    static_cast<float>(xy[2 * i + 1] - view.y0),
+                    colors[i].r,
+                    colors[i].g,
+                    colors[i].b,
+                    0};
   glBindBuffer(GL_ARRAY_BUFFER, g.instances);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(n * sizeof(Instance)), g.staging.data(), GL_STREAM_DRAW);
 

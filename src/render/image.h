@@ -55,10 +55,10 @@ inline constexpr CompareRule kTestsRule{8, 0.005};
 
 struct CompareResult {
   bool same_size = false;
-  long differing = 0;      // compared pixels whose largest channel difference exceeds the tolerance
-  long total = 0;          // pixels compared (the image less the ignored ones)
-  long ignored = 0;        // pixels left out by the mask
-  int max_difference = 0;  // largest channel difference over the compared pixels
+  long differing = 0;          // compared pixels whose largest channel difference exceeds the tolerance
+  long total = 0;              // pixels compared (the image less the ignored ones)
+  long ignored = 0;            // pixels left out by the mask
+  int max_difference = 0;      // largest channel difference over the compared pixels
   int max_x = -1, max_y = -1;  // the first pixel (row order) with that difference; -1 when it is 0
   // Bounding box of the differing pixels, inclusive; -1 when none differs.
   int box_x0 = -1, box_y0 = -1, box_x1 = -1, box_y1 = -1;

@@ -17,18 +17,25 @@ extern char** environ;
 namespace sluice::render {
 
 bool parse_video_format(const std::string& text, VideoFormat& f) {
-  if (text == "mp4") f = VideoFormat::mp4;
-  else if (text == "webm") f = VideoFormat::webm;
-  else if (text == "gif") f = VideoFormat::gif;
-  else return false;
+  if (text == "mp4")
+    f = VideoFormat::mp4;
+  else if (text == "webm")
+    f = VideoFormat::webm;
+  else if (text == "gif")
+    f = VideoFormat::gif;
+  else
+    return false;
   return true;
 }
 
 const char* extension(VideoFormat f) {
   switch (f) {
-    case VideoFormat::mp4: return "mp4";
-    case VideoFormat::webm: return "webm";
-    case VideoFormat::gif: return "gif";
+    case VideoFormat::mp4:
+      return "mp4";
+    case VideoFormat::webm:
+      return "webm";
+    case VideoFormat::gif:
+      return "gif";
   }
   return "";
 }
@@ -44,14 +51,23 @@ std::vector<std::string> ffmpeg_arguments(const VideoJob& job) {
   char fps[32];
   std::snprintf(fps, sizeof fps, "%.9g", job.fps);
   const std::string crf = std::to_string(job.crf >= 0 ? job.crf : default_crf(job.format));
-  std::vector<std::string> a = {"ffmpeg", "-nostdin", "-hide_banner", "-loglevel", "error", "-y",
-                                "-framerate", fps, "-start_number", std::to_string(job.start_number),
-                                "-i", job.frames_pattern};
+  std::vector<std::string> a = {"ffmpeg",
+                                "-nostdin",
+                                "-hide_banner",
+                                "-loglevel",
+                                "error",
+                                "-y",
+                                "-framerate",
+                                fps,
+                                "-start_number",
+                                std::to_string(job.start_number),
+                                "-i",
+                                job.frames_pattern};
   auto add = [&](std::initializer_list<std::string> more) { a.insert(a.end(), more); };
   // RGB -> Y'CbCr with the BT.709 matrix, matching the tags.
   const std::string yuv = "scale=out_color_matrix=bt709:out_range=tv,format=yuv420p";
-  const std::initializer_list<std::string> tags = {"-colorspace", "bt709", "-color_primaries", "bt709",
-                                                   "-color_trc", "bt709"};
+  const std::initializer_list<std::string> tags = {"-colorspace", "bt709",      "-color_primaries",
+                                                   "bt709",       "-color_trc", "bt709"};
   switch (job.format) {
     case VideoFormat::mp4:
       add({"-vf", yuv, "-c:v", "libx264", "-preset", "medium", "-crf", crf, "-pix_fmt", "yuv420p"});
@@ -64,8 +80,8 @@ std::vector<std::string> ffmpeg_arguments(const VideoJob& job) {
       add({"-f", "webm"});
       break;
     case VideoFormat::gif:
-      add({"-filter_complex", "[0:v]split[a][b];[a]palettegen=stats_mode=full[p];[b][p]paletteuse=dither=none",
-           "-loop", "0", "-f", "gif"});
+      add({"-filter_complex", "[0:v]split[a][b];[a]palettegen=stats_mode=full[p];[b][p]paletteuse=dither=none", "-loop",
+           "0", "-f", "gif"});
       break;
   }
   a.push_back(temporary_output(job));

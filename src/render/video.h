@@ -35,9 +35,9 @@ struct VideoJob {
   int start_number = 0;        // first frame index
   double fps = 30;
   VideoFormat format = VideoFormat::mp4;
-  int crf = -1;                // < 0: the format's default
-  std::string output;          // DIR/<scene>.<format>
-  std::string log;             // ffmpeg's stderr goes here
+  int crf = -1;                     // < 0: the format's default
+  std::string output;               // DIR/<scene>.<format>
+  std::string log;                  // ffmpeg's stderr goes here
   std::function<bool()> cancelled;  // polled while ffmpeg runs: true stops it (e.g. SIGTERM)
 };
 

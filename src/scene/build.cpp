@@ -56,7 +56,8 @@ Index remove_fluid_at_start(Scene& scene, const std::vector<shapes::BoundaryShap
       rest[k] = back.rotated(scene.fluid_x[k] - pose.shift);
       index[k] = Vec2(static_cast<double>(k), 0);
     }
-    const std::vector<Vec2> samples(scene.boundary_x.begin() + obj.first, scene.boundary_x.begin() + obj.first + obj.count);
+    const std::vector<Vec2> samples(scene.boundary_x.begin() + obj.first,
+                                    scene.boundary_x.begin() + obj.first + obj.count);
     removed += shapes::remove_covered_fluid(rest, index, {walls[i]}, samples, h, &near);
     scene.fluid_near_samples += near;
     std::vector<Vec2> x, v;
@@ -118,10 +119,10 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
     const double c = std::sqrt(scene.solver.stiffness / scene.solver.rest_density);
     const double limit = kAcousticCfl * h / c;
     if (scene.time.dt > limit)
-      ctx.fail("/time/dt", "WCSPH step " + num(scene.time.dt) + " s exceeds the acoustic limit 0.4 h / c = " + num(limit) +
-                               " s (sound speed c = sqrt(stiffness / rest_density) = " + num(c) +
-                               " m/s, h = " + num(h) + " m); use time.dt <= " + num(limit) +
-                               " or time.dt=null for the adaptive step");
+      ctx.fail("/time/dt",
+               "WCSPH step " + num(scene.time.dt) + " s exceeds the acoustic limit 0.4 h / c = " + num(limit) +
+                   " s (sound speed c = sqrt(stiffness / rest_density) = " + num(c) + " m/s, h = " + num(h) +
+                   " m); use time.dt <= " + num(limit) + " or time.dt=null for the adaptive step");
   }
   {
     Reader r(ctx, sections[2], "/stability");
@@ -154,7 +155,8 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
   std::set<std::string> names;
   BoundaryCost total;  // of all objects: each may stay under the limit, the sum must too
   resolved["boundaries"] = json::array();
-  if (boundaries && !boundaries->is_array()) ctx.fail("/boundaries", "expected an array of boundary objects, got " + show(*boundaries));
+  if (boundaries && !boundaries->is_array())
+    ctx.fail("/boundaries", "expected an array of boundary objects, got " + show(*boundaries));
   for (std::size_t i = 0; boundaries && i < boundaries->size(); ++i) {
     Reader r(ctx, &(*boundaries)[i], "/boundaries/" + std::to_string(i));
     BoundaryObject obj;
@@ -178,8 +180,9 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
     // (grids, volumes) can place a sample at infinity.
     for (const Vec2& p : samples)
       if (!std::isfinite(p.x()) || !std::isfinite(p.y()))
-        ctx.fail("/boundaries/" + std::to_string(i), "its samples would have coordinates beyond the range of numbers "
-                                                     "(coordinates, radii or layer_spacing too large); keep them far below 1e300");
+        ctx.fail("/boundaries/" + std::to_string(i),
+                 "its samples would have coordinates beyond the range of numbers "
+                 "(coordinates, radii or layer_spacing too large); keep them far below 1e300");
     scene.objects[i].first = static_cast<Index>(scene.boundary_x.size());
     scene.objects[i].count = static_cast<Index>(samples.size());
     scene.boundary_x.insert(scene.boundary_x.end(), samples.begin(), samples.end());
@@ -206,9 +209,10 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
   const std::size_t lattice_points = scene.fluid_x.size();
   scene.fluid_removed = remove_fluid_at_start(scene, walls, h);
   if (scene.fluid_x.empty())
-    ctx.fail("/fluid", "the scene has no fluid particles (" + std::to_string(lattice_points) +
-                           (lattice_points ? " lattice points, all removed inside boundaries)"
-                                           : " lattice points: the fluid blocks are empty or have no area at this spacing)"));
+    ctx.fail("/fluid",
+             "the scene has no fluid particles (" + std::to_string(lattice_points) +
+                 (lattice_points ? " lattice points, all removed inside boundaries)"
+                                 : " lattice points: the fluid blocks are empty or have no area at this spacing)"));
 
   // Bounds of everything at t = 0.
   scene.bounds_min = scene.bounds_max = scene.fluid_x.front();
@@ -228,7 +232,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
                      (ec && ec != std::errc::no_such_file_or_directory ? " (" + ec.message() + ")" : std::string()));
   if (std::filesystem::is_directory(status))
     throw SceneError(path + ": is a directory; expected a scene file (JSON), e.g. scenes/dam_break.json");
-  if (!std::filesystem::is_regular_file(status)) throw SceneError(path + ": not a regular file; expected a scene file (JSON)");
+  if (!std::filesystem::is_regular_file(status))
+    throw SceneError(path + ": not a regular file; expected a scene file (JSON)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot open scene file: " + std::strerror(errno));
   std::stringstream ss;

@@ -21,12 +21,14 @@ constexpr std::size_t kMaxDepth = 100;
 
 // "line:column" (1-based) of byte `pos` of `text`.
 std::string line_column(const std::string& text, std::size_t pos) {
-  const std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
+  const std::size_t line =
+      1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
   const std::size_t nl = pos == 0 ? std::string::npos : text.rfind('\n', pos - 1);
   return std::to_string(line) + ":" + std::to_string(nl == std::string::npos ? pos + 1 : pos - nl);
 }
 
-std::string message(const std::string& file, const std::string& where, const std::string& path, const std::string& problem) {
+std::string message(const std::string& file, const std::string& where, const std::string& path,
+                    const std::string& problem) {
   return file + (where.empty() ? "" : ":" + where) + ": " + (path.empty() ? "/" : path) + ": " + problem;
 }
 
@@ -134,8 +136,9 @@ std::optional<std::size_t> locate(const std::string& text, const std::string& pa
     }
     return true;
   };
-  const json skeleton = json::parse(CountingIterator(text.data(), &taken), CountingIterator(text.data() + text.size(), &taken),
-                                    callback, /*allow_exceptions=*/false);
+  const json skeleton =
+      json::parse(CountingIterator(text.data(), &taken), CountingIterator(text.data() + text.size(), &taken), callback,
+                  /*allow_exceptions=*/false);
   (void)skeleton;  // the containers, emptied of their values
   return found;
 }
@@ -174,9 +177,12 @@ bool Range::contains(double v) const {
 
 std::string Range::describe() const {
   std::string s;
-  if (hi == kInf && lo == -kInf) s = "must be a finite number";
-  else if (hi == kInf) s = std::string("must be ") + (lo_open ? "> " : ">= ") + num(lo);
-  else s = "must be in " + std::string(lo_open ? "(" : "[") + num(lo) + ", " + num(hi) + (hi_open ? ")" : "]");
+  if (hi == kInf && lo == -kInf)
+    s = "must be a finite number";
+  else if (hi == kInf)
+    s = std::string("must be ") + (lo_open ? "> " : ">= ") + num(lo);
+  else
+    s = "must be in " + std::string(lo_open ? "(" : "[") + num(lo) + ", " + num(hi) + (hi_open ? ")" : "]");
   return unit.empty() ? s : s + " " + unit;
 }
 
@@ -225,8 +231,8 @@ std::string Context::choice(const json& v, const std::string& path, const std::v
 }
 
 Vec2 Context::vec2(const json& v, const std::string& path) const {
-  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number() ||
-      !std::isfinite(v[0].get<double>()) || !std::isfinite(v[1].get<double>()))
+  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number() || !std::isfinite(v[0].get<double>()) ||
+      !std::isfinite(v[1].get<double>()))
     fail(path, "expected an array of 2 numbers, got " + show(v));
   return {v[0].get<double>(), v[1].get<double>()};
 }
@@ -365,12 +371,14 @@ json parse_json(const std::string& text, const Context& ctx) {
     throw SceneError(ctx.file + ":" + line_column(text, nul) + ": a NUL byte; a scene file is JSON text");
   json j;
   try {
-    j = json::parse(CountingIterator(text.data(), &taken), CountingIterator(text.data() + text.size(), &taken), callback);
+    j = json::parse(CountingIterator(text.data(), &taken), CountingIterator(text.data() + text.size(), &taken),
+                    callback);
   } catch (const json::parse_error& e) {
     // e.byte counts the characters read; the last one read is where the error is.
     std::size_t pos = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
     // An unexpected string is reported at its closing quote; point at its opening quote.
-    if (pos < text.size() && text[pos] == '"' && std::string(e.what()).find("unexpected string literal") != std::string::npos)
+    if (pos < text.size() && text[pos] == '"' &&
+        std::string(e.what()).find("unexpected string literal") != std::string::npos)
       pos = opening_quote(text, pos);
     std::string detail = e.what();
     std::size_t p = detail.find("column ");
@@ -381,15 +389,17 @@ json parse_json(const std::string& text, const Context& ctx) {
     // "number overflow parsing '1e999'" carries no position: find the number in the text.
     const std::string what = e.what();
     const std::size_t q1 = what.find('\''), q2 = what.rfind('\'');
-    const std::size_t at = q1 != std::string::npos && q2 > q1 ? text.find(what.substr(q1 + 1, q2 - q1 - 1)) : std::string::npos;
+    const std::size_t at =
+        q1 != std::string::npos && q2 > q1 ? text.find(what.substr(q1 + 1, q2 - q1 - 1)) : std::string::npos;
     const std::string detail = what.substr(what.find("] ") == std::string::npos ? 0 : what.find("] ") + 2);
-    throw SceneError(ctx.file + (at == std::string::npos ? "" : ":" + line_column(text, at)) + ": JSON parse error: " +
-                     detail + " (numbers must be within the range of double, about 1.8e308)");
+    throw SceneError(ctx.file + (at == std::string::npos ? "" : ":" + line_column(text, at)) +
+                     ": JSON parse error: " + detail + " (numbers must be within the range of double, about 1.8e308)");
   } catch (const json::exception& e) {
     throw SceneError(ctx.file + ": JSON parse error: " + e.what());
   }
-  if (!duplicate.empty()) throw SceneError(message(ctx.file, line_column(text, duplicate_at), duplicate,
-                                                   "duplicate key; each key may appear only once"));
+  if (!duplicate.empty())
+    throw SceneError(
+        message(ctx.file, line_column(text, duplicate_at), duplicate, "duplicate key; each key may appear only once"));
   return j;
 }
 

@@ -32,7 +32,9 @@ struct Range {
   static Range any(std::string unit = "") { return {-kInf, kInf, false, false, std::move(unit)}; }
   static Range positive(std::string unit = "") { return {0, kInf, true, false, std::move(unit)}; }
   static Range at_least(double lo, std::string unit = "") { return {lo, kInf, false, false, std::move(unit)}; }
-  static Range open_closed(double lo, double hi, std::string unit = "") { return {lo, hi, true, false, std::move(unit)}; }
+  static Range open_closed(double lo, double hi, std::string unit = "") {
+    return {lo, hi, true, false, std::move(unit)};
+  }
 
   bool contains(double v) const;
   std::string describe() const;
@@ -43,8 +45,8 @@ struct Range {
 // file as written (not set nor changed by an override), else "file: /path: problem".
 struct Context {
   std::string file;
-  const std::string* text = nullptr;     // the scene's JSON text; must outlive the Context
-  std::vector<std::string> overridden;   // JSON pointers whose values an override set
+  const std::string* text = nullptr;    // the scene's JSON text; must outlive the Context
+  std::vector<std::string> overridden;  // JSON pointers whose values an override set
 
   [[noreturn]] void fail(const std::string& path, const std::string& problem) const;
 

@@ -16,8 +16,9 @@ namespace {
 json::json_pointer slash_path(const std::string& path) {
   std::string escaped;
   for (std::size_t i = 0; i < path.size(); ++i)
-    escaped += path[i] == '~' && !(i + 1 < path.size() && (path[i + 1] == '0' || path[i + 1] == '1')) ? "~0"
-                                                                                                       : std::string(1, path[i]);
+    escaped += path[i] == '~' && !(i + 1 < path.size() && (path[i + 1] == '0' || path[i + 1] == '1'))
+                   ? "~0"
+                   : std::string(1, path[i]);
   return json::json_pointer(escaped);
 }
 

@@ -25,7 +25,8 @@ MotionComponent read_motion_component(Reader& r, const Context& ctx) {
     if (end && !end->is_null()) {
       m.end = ctx.number(*end, r.at("end"), Range::at_least(0, "[s]"));
       if (m.end < m.start)
-        ctx.fail(r.at("end"), "end " + num(m.end) + " s is before start " + num(m.start) + " s; need start <= end, or null for no end");
+        ctx.fail(r.at("end"), "end " + num(m.end) + " s is before start " + num(m.start) +
+                                  " s; need start <= end, or null for no end");
     }
     r.resolved()["end"] = std::isfinite(m.end) ? json(m.end) : json(nullptr);
   } else if (type == "oscillation") {
@@ -35,19 +36,23 @@ MotionComponent read_motion_component(Reader& r, const Context& ctx) {
     const json* amp = r.find("amplitude");
     const json* ang = r.find("angular_amplitude");
     if ((amp != nullptr) == (ang != nullptr))
-      ctx.fail(r.path(), "give exactly one of \"amplitude\" (a shift along direction, [m]) and \"angular_amplitude\" (a rotation about pivot, [rad])");
+      ctx.fail(r.path(),
+               "give exactly one of \"amplitude\" (a shift along direction, [m]) and \"angular_amplitude\" (a rotation "
+               "about pivot, [rad])");
     if (amp) {
       m.amplitude = ctx.number(*amp, r.at("amplitude"), Range::at_least(0, "[m]"));
       r.resolved()["amplitude"] = m.amplitude;
       const json* dir = r.find("direction");
       const json* angle = r.find("angle");
-      if (dir && angle) ctx.fail(r.path(), "give at most one of \"direction\" ([x, y]) and \"angle\" ([rad] from the x axis)");
+      if (dir && angle)
+        ctx.fail(r.path(), "give at most one of \"direction\" ([x, y]) and \"angle\" ([rad] from the x axis)");
       if (angle) {
         const double a = ctx.number(*angle, r.at("angle"), Range::any("[rad]"));
         m.direction = {std::cos(a), std::sin(a)};
       } else if (dir) {
         m.direction = ctx.vec2(*dir, r.at("direction"));
-        if (m.direction.norm() == 0) ctx.fail(r.at("direction"), "the direction [0, 0] has no length; give a non-zero vector");
+        if (m.direction.norm() == 0)
+          ctx.fail(r.at("direction"), "the direction [0, 0] has no length; give a non-zero vector");
         m.direction.normalize();
       }
       r.resolved()["direction"] = {m.direction.x(), m.direction.y()};
@@ -62,7 +67,8 @@ MotionComponent read_motion_component(Reader& r, const Context& ctx) {
     m.pivot = r.vec2("pivot", Vec2::Zero());
     const json& keys = r.require("keys", "an array of at least 2 keys {\"time\", \"offset\", \"angle\"}");
     if (!keys.is_array() || keys.size() < 2)
-      ctx.fail(r.at("keys"), "expected an array of at least 2 keys {\"time\", \"offset\", \"angle\"}, got " + show(keys));
+      ctx.fail(r.at("keys"),
+               "expected an array of at least 2 keys {\"time\", \"offset\", \"angle\"}, got " + show(keys));
     json resolved_keys = json::array();
     for (std::size_t i = 0; i < keys.size(); ++i) {
       Reader k(ctx, &keys[i], r.at("keys") + "/" + std::to_string(i));
@@ -72,8 +78,8 @@ MotionComponent read_motion_component(Reader& r, const Context& ctx) {
       key.angle = k.number("angle", 0.0, Range::any("[rad]"));
       k.finish();
       if (i > 0 && !(key.time > m.keys.back().time))
-        ctx.fail(k.at("time"), "time " + num(key.time) + " s is not after the previous key's " + num(m.keys.back().time) +
-                                   " s; key times must increase");
+        ctx.fail(k.at("time"), "time " + num(key.time) + " s is not after the previous key's " +
+                                   num(m.keys.back().time) + " s; key times must increase");
       m.keys.push_back(key);
       resolved_keys.push_back(k.resolved());
     }
@@ -88,7 +94,10 @@ Motion read_motion(const json& v, const std::string& path, const Context& ctx, j
   Motion motion;
   const bool single = v.is_object();
   if (!single && !v.is_array())
-    ctx.fail(path, "expected a motion object or an array of them (types: rotation, translation, oscillation, keyframes), got " + show(v));
+    ctx.fail(
+        path,
+        "expected a motion object or an array of them (types: rotation, translation, oscillation, keyframes), got " +
+            show(v));
   const std::size_t n = single ? 1 : v.size();
   resolved = json::array();
   for (std::size_t i = 0; i < n; ++i) {

@@ -21,14 +21,15 @@ void check_step_count(Reader& r, const Context& ctx, const TimeSettings& t, bool
   const std::string key = fixed ? "dt" : "dt_max";
   const double steps = (t.settle + t.duration) / step;
   if (!(steps <= kMaxSteps))
-    ctx.fail(r.at(key), key + " " + num(step) + " s for " + num(t.settle + t.duration) + " s (settle + duration) makes at least " +
-                            num(std::ceil(steps)) + " steps; the limit is " + num(kMaxSteps) + " (raise " + key +
-                            " or shorten the run)");
+    ctx.fail(r.at(key), key + " " + num(step) + " s for " + num(t.settle + t.duration) +
+                            " s (settle + duration) makes at least " + num(std::ceil(steps)) + " steps; the limit is " +
+                            num(kMaxSteps) + " (raise " + key + " or shorten the run)");
   const double smallest = fixed ? t.dt : t.dt_min;
   const double end = t.settle + t.duration;
   if (!(end + smallest > end))
-    ctx.fail(r.at(fixed ? "dt" : "dt_min"), "value " + num(smallest) + " s does not advance the time at t = " + num(end) +
-                                              " s in double precision; must be > " + num(end * 0x1p-52) + " [s]");
+    ctx.fail(r.at(fixed ? "dt" : "dt_min"), "value " + num(smallest) +
+                                                " s does not advance the time at t = " + num(end) +
+                                                " s in double precision; must be > " + num(end * 0x1p-52) + " [s]");
 }
 
 }  // namespace
@@ -47,8 +48,9 @@ SolverSettings read_solver(Reader& r, const Context& ctx) {
   s.min_iterations = r.integer("min_iterations", s.min_iterations, 1, 10000);
   s.max_iterations = r.integer("max_iterations", s.max_iterations, 1, 10000);
   if (s.min_iterations > s.max_iterations)
-    ctx.fail(r.at("min_iterations"), "min_iterations " + std::to_string(s.min_iterations) + " is larger than max_iterations " +
-                                         std::to_string(s.max_iterations) + "; need 1 <= min_iterations <= max_iterations <= 10000");
+    ctx.fail(r.at("min_iterations"), "min_iterations " + std::to_string(s.min_iterations) +
+                                         " is larger than max_iterations " + std::to_string(s.max_iterations) +
+                                         "; need 1 <= min_iterations <= max_iterations <= 10000");
   s.pressure_init = r.enumeration("pressure_init", s.pressure_init,
                                   {{"warm", PressureInit::WarmStart}, {"thesis", PressureInit::Thesis}});
   s.stiffness = r.number("stiffness", s.stiffness, Range::positive("[Pa*m]"));
@@ -70,13 +72,16 @@ TimeSettings read_time(Reader& r, const Context& ctx) {
   t.duration = r.number("duration", t.duration, Range::positive("[s]"));
   t.fps = r.number("fps", t.fps, Range::positive("[frames/s]"));
   if (!(t.duration * t.fps <= kMaxFrames))
-    ctx.fail(r.path(), "duration " + num(t.duration) + " s at fps " + num(t.fps) + " makes " + num(std::ceil(t.duration * t.fps)) +
-                           " frames; the limit is " + num(kMaxFrames) + " (shorten duration or lower fps)");
+    ctx.fail(r.path(), "duration " + num(t.duration) + " s at fps " + num(t.fps) + " makes " +
+                           num(std::ceil(t.duration * t.fps)) + " frames; the limit is " + num(kMaxFrames) +
+                           " (shorten duration or lower fps)");
   const json* dt = r.find("dt");
   const json* cfl = r.find("cfl");
   const bool fixed = dt && !dt->is_null(), has_cfl = cfl && !cfl->is_null();
   if (fixed && has_cfl)
-    ctx.fail(r.path(), "both dt and cfl are given; remove \"cfl\" for a fixed time step, or \"dt\" for the adaptive CFL step (an override can remove a key with null, e.g. time.dt=null)");
+    ctx.fail(r.path(),
+             "both dt and cfl are given; remove \"cfl\" for a fixed time step, or \"dt\" for the adaptive CFL step (an "
+             "override can remove a key with null, e.g. time.dt=null)");
   if (fixed) t.dt = ctx.number(*dt, r.at("dt"), Range::positive("[s]"));
   if (has_cfl) t.cfl = ctx.number(*cfl, r.at("cfl"), Range::open_closed(0, 2));
   r.resolved()["dt"] = fixed ? json(t.dt) : json(nullptr);
@@ -85,7 +90,8 @@ TimeSettings read_time(Reader& r, const Context& ctx) {
   t.dt_min = r.number("dt_min", t.dt_min, Range::positive("[s]"));
   t.settle = r.number("settle", t.settle, Range::at_least(0, "[s]"));
   if (t.dt_min > t.dt_max)
-    ctx.fail(r.at("dt_min"), "dt_min " + num(t.dt_min) + " is larger than dt_max " + num(t.dt_max) + "; need 0 < dt_min <= dt_max");
+    ctx.fail(r.at("dt_min"),
+             "dt_min " + num(t.dt_min) + " is larger than dt_max " + num(t.dt_max) + "; need 0 < dt_min <= dt_max");
   if (t.duration < kMinDuration)
     ctx.fail(r.at("duration"), "value " + num(t.duration) + " is out of range; must be >= " + num(kMinDuration) +
                                    " [s] (shorter runs are below the resolution of the time steps)");
@@ -98,7 +104,8 @@ StabilityLimits read_stability(Reader& r) {
   StabilityLimits s;
   s.max_error_percent = r.number("max_error_percent", s.max_error_percent, Range::positive("(percent)"));
   s.bounds_margin = r.number("bounds_margin", s.bounds_margin, Range::positive("(scene sizes)"));
-  s.max_leaked_percent = r.number("max_leaked_percent", s.max_leaked_percent, Range{0, 100, false, false, "(percent of the fluid particles)"});
+  s.max_leaked_percent = r.number("max_leaked_percent", s.max_leaked_percent,
+                                  Range{0, 100, false, false, "(percent of the fluid particles)"});
   r.finish();
   return s;
 }
@@ -107,7 +114,8 @@ OutputSettings read_output(Reader& r, const Context& ctx, const std::string& nam
   OutputSettings o;
   o.directory = r.string("directory", "renders/" + name);
   if (const json* e = r.find("export")) {
-    if (!e->is_array()) ctx.fail(r.at("export"), "expected an array of formats, got " + show(*e) + "; allowed formats: csv, vtk");
+    if (!e->is_array())
+      ctx.fail(r.at("export"), "expected an array of formats, got " + show(*e) + "; allowed formats: csv, vtk");
     for (std::size_t i = 0; i < e->size(); ++i) {
       const std::string path = r.at("export") + "/" + std::to_string(i);
       std::string f = ctx.choice((*e)[i], path, {"csv", "vtk"});
@@ -137,8 +145,10 @@ RenderSettings read_render(Reader& r, const Context& ctx) {
     const Vec2 lohi = ctx.vec2(*range, r.at("range"));
     // hi - lo must be finite too: the colour of a value is (v - lo) / (hi - lo).
     if (!(lohi.y() > lohi.x()) || !std::isfinite(lohi.y() - lohi.x()))
-      ctx.fail(r.at("range"), "range " + show(*range) +
-                                  " must be [lo, hi] with lo < hi and hi - lo finite (in the units of color_by), or null for automatic");
+      ctx.fail(
+          r.at("range"),
+          "range " + show(*range) +
+              " must be [lo, hi] with lo < hi and hi - lo finite (in the units of color_by), or null for automatic");
     s.fixed_range = true;
     s.range_lo = lohi.x();
     s.range_hi = lohi.y();
@@ -165,7 +175,8 @@ RenderSettings read_render(Reader& r, const Context& ctx) {
 // The name becomes a folder (renders/<name>) and a file (<name>.mp4): it must stay one
 // path component, so that a scene cannot write outside its output directory.
 void check_name(const Context& ctx, const std::string& name) {
-  const bool control = std::any_of(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; });
+  const bool control =
+      std::any_of(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; });
   if (name == "." || name == ".." || name.find_first_of("/\\") != std::string::npos || control)
     ctx.fail("/name", "invalid value " + show(json(name)) +
                           "; a name must not contain '/', '\\' or control characters, nor be '.' or '..' (it names the "

@@ -21,15 +21,17 @@ shapes::SegmentSpacing read_spacing_entry(const json& v, const std::string& path
     return {s, s};
   }
   if (!v.is_array() || v.size() != 2)
-    ctx.fail(path, "expected a spacing > 0 [m] or a pair [s_start, s_end] of spacings > 0 [m] (graded from the segment's "
-                   "first point to its second), got " + show(v));
+    ctx.fail(path,
+             "expected a spacing > 0 [m] or a pair [s_start, s_end] of spacings > 0 [m] (graded from the segment's "
+             "first point to its second), got " +
+                 show(v));
   return {ctx.number(v[0], path + "/0", range), ctx.number(v[1], path + "/1", range)};
 }
 
 // Per-segment spacing: one number for all, or an array with one entry per segment, each a
 // number or a graded pair [s_start, s_end].
-std::vector<shapes::SegmentSpacing> read_segment_spacing(Reader& r, const Context& ctx, std::size_t segments, double def,
-                                                         bool allow_array, const std::string& order) {
+std::vector<shapes::SegmentSpacing> read_segment_spacing(Reader& r, const Context& ctx, std::size_t segments,
+                                                         double def, bool allow_array, const std::string& order) {
   const json* v = r.find("spacing");
   if (!v) {
     r.resolved()["spacing"] = def;
@@ -39,10 +41,11 @@ std::vector<shapes::SegmentSpacing> read_segment_spacing(Reader& r, const Contex
   if (v->is_array() && allow_array) {
     if (v->size() != segments) {
       // Two numbers for one segment are most likely a graded pair without its brackets.
-      const std::string hint = segments == 1 && v->size() == 2 ? "; a graded spacing is a pair inside the array: [[s_start, s_end]]"
-                                                                : "; each entry is a number or a pair [s_start, s_end]";
-      ctx.fail(r.at("spacing"), "expected " + std::to_string(segments) + " spacings (one per segment" + order + "), got " +
-                                    std::to_string(v->size()) + hint);
+      const std::string hint = segments == 1 && v->size() == 2
+                                   ? "; a graded spacing is a pair inside the array: [[s_start, s_end]]"
+                                   : "; each entry is a number or a pair [s_start, s_end]";
+      ctx.fail(r.at("spacing"), "expected " + std::to_string(segments) + " spacings (one per segment" + order +
+                                    "), got " + std::to_string(v->size()) + hint);
     }
     std::vector<shapes::SegmentSpacing> out;
     for (std::size_t i = 0; i < segments; ++i)
@@ -50,10 +53,12 @@ std::vector<shapes::SegmentSpacing> read_segment_spacing(Reader& r, const Contex
     return out;
   }
   if (!v->is_number())
-    ctx.fail(r.at("spacing"), allow_array ? "expected a number or an array with one entry per segment (a number or a pair "
-                                            "[s_start, s_end]), got " + show(*v)
-                                          : "expected a number, got " + show(*v) +
-                                                "; circles and ellipses are sampled uniformly in arc length, with one spacing");
+    ctx.fail(r.at("spacing"), allow_array
+                                  ? "expected a number or an array with one entry per segment (a number or a pair "
+                                    "[s_start, s_end]), got " +
+                                        show(*v)
+                                  : "expected a number, got " + show(*v) +
+                                        "; circles and ellipses are sampled uniformly in arc length, with one spacing");
   const double s = ctx.number(*v, r.at("spacing"), Range::positive("[m]"));
   return std::vector<shapes::SegmentSpacing>(segments, {s, s});
 }
@@ -74,10 +79,13 @@ shapes::BoundaryShape read_point_samples(Reader& r, const Context& ctx) {
   const json* samples = r.find("samples");
   r.finish();  // a misspelt key before any file is read
   if ((file != nullptr) == (samples != nullptr))
-    ctx.fail(r.path(), std::string(file ? "both \"file\" and" : "neither \"file\" nor") + " \"samples\" given; give exactly one: " +
-                           "\"file\" (a text file of x,y lines, relative to the scene file) or \"samples\" (an array of [x, y])");
+    ctx.fail(r.path(),
+             std::string(file ? "both \"file\" and" : "neither \"file\" nor") +
+                 " \"samples\" given; give exactly one: " +
+                 "\"file\" (a text file of x,y lines, relative to the scene file) or \"samples\" (an array of [x, y])");
   if (samples) {
-    if (samples->is_array() && samples->empty()) ctx.fail(r.at("samples"), "the list is empty; give at least one sample [x, y]");
+    if (samples->is_array() && samples->empty())
+      ctx.fail(r.at("samples"), "the list is empty; give at least one sample [x, y]");
     b.points = ctx.points(*samples, r.at("samples"), 1);
     r.resolved()["samples"] = *samples;
   } else {
@@ -106,8 +114,8 @@ shapes::FluidShape read_fluid_block(Reader& r, const Context& ctx) {
     f.min = r.vec2("min");
     f.max = r.vec2("max");
     if (f.max.x() < f.min.x() || f.max.y() < f.min.y())
-      ctx.fail(r.at("max"), "max [" + num(f.max.x()) + ", " + num(f.max.y()) + "] is below min [" + num(f.min.x()) + ", " +
-                                num(f.min.y()) + "]; need min <= max in x and y");
+      ctx.fail(r.at("max"), "max [" + num(f.max.x()) + ", " + num(f.max.y()) + "] is below min [" + num(f.min.x()) +
+                                ", " + num(f.min.y()) + "]; need min <= max in x and y");
   } else if (shape == "ellipse") {
     f.kind = shapes::FluidShape::Kind::Ellipse;
     f.center = r.vec2("center");
@@ -152,7 +160,7 @@ BoundaryCost boundary_cost(const shapes::BoundaryShape& b, double h) {
     const std::size_t n = pts.size(), segs = b.closed ? n : n - 1;
     for (std::size_t i = 0; i < segs; ++i)
       c.samples += std::max(1.0, finite_or_inf(std::round(shapes::spacing_integral((pts[(i + 1) % n] - pts[i]).norm(),
-                                                                                     b.segment_spacing[i]))));
+                                                                                   b.segment_spacing[i]))));
     c.samples += b.closed ? 0 : 1;
   }
   if (ellipse) {  // curve(h) samples the ellipse at a quarter spacing
@@ -211,8 +219,8 @@ shapes::BoundaryShape read_boundary(Reader& r, const Context& ctx, std::size_t i
         ctx.fail(r.at("points") + "/" + std::to_string((i + 1) % b.points.size()),
                  "repeats the previous point; segments must have a length > 0");
     if (const int seg = shapes::self_intersection(b.points, b.closed); seg >= 0)
-      ctx.fail(r.at("points"), "segment " + std::to_string(seg) + " crosses or runs along another segment; the " + shape +
-                                   " must not intersect or overlap itself");
+      ctx.fail(r.at("points"), "segment " + std::to_string(seg) + " crosses or runs along another segment; the " +
+                                   shape + " must not intersect or overlap itself");
     if (polygon && shapes::signed_area(b.points) == 0) ctx.fail(r.at("points"), "the polygon has zero area");
     b.segment_spacing = read_segment_spacing(r, ctx, segs, h, true, "");
     if (polygon) {
@@ -242,7 +250,8 @@ shapes::BoundaryShape read_boundary(Reader& r, const Context& ctx, std::size_t i
   return b;
 }
 
-void check_boundary_cost(const Context& ctx, const std::string& path, const BoundaryCost& cost, const BoundaryCost& total) {
+void check_boundary_cost(const Context& ctx, const std::string& path, const BoundaryCost& cost,
+                         const BoundaryCost& total) {
   if (!(cost.samples <= kMaxParticles))
     ctx.fail(path, "would create " + about(cost.samples) + " boundary samples; the limit is " + num(kMaxParticles) +
                        " (check spacing, layers and layer_spacing)");

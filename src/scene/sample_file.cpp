@@ -50,12 +50,15 @@ bool parse_number(const std::string& field, double& x) {
 
 // A first line "x,y" or "x y" (either case) names the columns.
 bool is_header(const std::vector<std::string>& fields) {
-  auto is = [](const std::string& f, char c) { return f.size() == 1 && std::tolower(static_cast<unsigned char>(f[0])) == c; };
+  auto is = [](const std::string& f, char c) {
+    return f.size() == 1 && std::tolower(static_cast<unsigned char>(f[0])) == c;
+  };
   return fields.size() == 2 && is(fields[0], 'x') && is(fields[1], 'y');
 }
 }  // namespace
 
-std::vector<Vec2> read_sample_file(const std::filesystem::path& path, const std::string& json_path, const Context& ctx) {
+std::vector<Vec2> read_sample_file(const std::filesystem::path& path, const std::string& json_path,
+                                   const Context& ctx) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   // A device or folder opens but is not a points file: say what it is, not "cannot open".
@@ -88,7 +91,8 @@ std::vector<Vec2> read_sample_file(const std::filesystem::path& path, const std:
       ctx.fail(json_path, where + ": more than " + num(kMaxParticles) + " samples; the limit is " + num(kMaxParticles));
   }
   if (out.empty())
-    ctx.fail(json_path, path.string() + ": no samples (only empty lines, comments or a header); give at least one line x,y");
+    ctx.fail(json_path,
+             path.string() + ": no samples (only empty lines, comments or a header); give at least one line x,y");
   return out;
 }
 

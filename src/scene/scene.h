@@ -33,11 +33,11 @@ struct OutputSettings {
 // otherwise. Names are validated here; the renderer maps them to its own types.
 struct RenderSettings {
   int width = 1280, height = 720;
-  std::string color_by = "cfl";      // cfl | speed | pressure | density_error
-  std::string colormap = "spectrum"; // spectrum | viridis | turbo
-  bool fixed_range = false;          // false: automatic (fixed for the run, from the scene)
+  std::string color_by = "cfl";       // cfl | speed | pressure | density_error
+  std::string colormap = "spectrum";  // spectrum | viridis | turbo
+  bool fixed_range = false;           // false: automatic (fixed for the run, from the scene)
   double range_lo = 0, range_hi = 1;
-  bool fixed_view = false;           // false: the scene's bounds at t = 0 with a margin
+  bool fixed_view = false;  // false: the scene's bounds at t = 0 with a margin
   Vec2 view_min{0, 0}, view_max{1, 1};
 };
 
@@ -60,7 +60,6 @@ struct Scene : SimulationSetup {
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
 
 // Same from JSON text already in memory; `file` is only used in messages.
-Scene parse_scene(const std::string& text, const std::string& file,
-                  const std::vector<std::string>& overrides = {});
+Scene parse_scene(const std::string& text, const std::string& file, const std::vector<std::string>& overrides = {});
 
 }  // namespace sluice

@@ -42,6 +42,7 @@ BoundaryCost boundary_cost(const shapes::BoundaryShape& b, double h);
 
 // Guard against absurd sample counts (e.g. a spacing typo): refuses a boundary whose
 // cost alone, or with the objects before it (`total`, this one included), passes the limit.
-void check_boundary_cost(const Context& ctx, const std::string& path, const BoundaryCost& cost, const BoundaryCost& total);
+void check_boundary_cost(const Context& ctx, const std::string& path, const BoundaryCost& cost,
+                         const BoundaryCost& total);
 
 }  // namespace sluice::scene_detail

@@ -141,7 +141,8 @@ void Simulation::prepare_boundary_terms() {
   scratch_->grad_b.resize(n);
   parallel_for(n, [&](Index i) {
     Vec2 g = Vec2::Zero();
-    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) g += (rho0 * boundary_.volume[fb_.j[k]]) * fb_.grad[k].cast<double>();
+    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k)
+      g += (rho0 * boundary_.volume[fb_.j[k]]) * fb_.grad[k].cast<double>();
     scratch_->grad_b[i] = g;
   });
   scratch_->pb_over_rho2.assign(nb, 0.0);
@@ -172,8 +173,9 @@ void Simulation::update_boundary_pressure() {
   if (settings_.boundary_pressure == BoundaryPressure::Solved && settings_.type == SolverType::WCSPH) {
     const double k = settings_.stiffness, g1r = settings_.gamma1 * rho0;
     parallel_for(boundary_.size(), [&](Index b) {
-      const double p = bf_.offset[b] == bf_.offset[b + 1] ? 0.0
-                                                         : std::max(k * (boundary_density(bf_, b, mass_, g1r) / rho0 - 1.0), 0.0);
+      const double p = bf_.offset[b] == bf_.offset[b + 1]
+                           ? 0.0
+                           : std::max(k * (boundary_density(bf_, b, mass_, g1r) / rho0 - 1.0), 0.0);
       boundary_.p[b] = p;
       scratch_->pb_over_rho2[b] = p * inv_rho0_2;
     });

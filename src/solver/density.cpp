@@ -25,9 +25,8 @@ void Simulation::find_neighbors_phase() {
                 "one neighbour list per fluid particle");
 }
 
-// One pass over all pairs: caches grad W (in single precision, see NeighborLists) for fluid and boundary pairs (and W for
-// boundary pairs, which Eq. 25 gathers again) and sums the density of Eq. 13 with the
-// boundary term of section 4.1:
+// One pass over all pairs: caches grad W (in single precision, see NeighborLists) for fluid and boundary pairs (and W
+// for boundary pairs, which Eq. 25 gathers again) and sums the density of Eq. 13 with the boundary term of section 4.1:
 //   rho_i = sum_f m_f W_if + gamma2 sum_b m_b W_ib,  m_b = rho0 V_b.
 void Simulation::compute_density() {
   const double w0 = kernel_.W(0.0);

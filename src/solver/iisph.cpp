@@ -109,7 +109,8 @@ Index Simulation::prepare_pressure_system(double dt) {
       const Index b = fb_.j[k];
       const double mb = rho0 * boundary_.volume[b];
       div_b += mb * (vi - vb_scale * boundary_.v[b]).dot(fb_.grad[k].cast<double>());
-      if (coupling && scratch_->ext_wsum[b] > 0.0) e += (mb * fb_.w[k] / scratch_->ext_wsum[b]) * fb_.grad[k].cast<double>();
+      if (coupling && scratch_->ext_wsum[b] > 0.0)
+        e += (mb * fb_.w[k] / scratch_->ext_wsum[b]) * fb_.grad[k].cast<double>();
     }
     scratch_->s[i] = (rho0 - rhoi) / dt - (div + g2 * div_b);
     const double inv_rho2 = 1.0 / (rhoi * rhoi);
@@ -205,7 +206,8 @@ Index Simulation::prepare_solved_boundary(double dt) {
 // (Ap)_b of a pressure-boundary sample (prepare_solved_boundary) from the fluid's a_p.
 double Simulation::sample_operator_of(Index b, const PressureTerms& t) const {
   double ap = 0.0;
-  for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) ap -= scratch_->a_p[bf_.j[k]].dot(bf_.grad[k].cast<double>());
+  for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k)
+    ap -= scratch_->a_p[bf_.j[k]].dot(bf_.grad[k].cast<double>());
   return ap * (t.dt * t.mass);
 }
 

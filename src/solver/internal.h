@@ -14,19 +14,19 @@ namespace sluice {
 
 // Per-step scratch of the pressure solvers ("hot" arrays, reused between steps).
 struct SolverScratch {
-  std::vector<Vec2> a_p;        // pressure acceleration (Eq. 11/24)
-  std::vector<Vec2> grad_b;     // sum_b m_b grad W_ib, fixed within a step
-  std::vector<double> a_ii;     // diagonal (Eq. 22/26)
+  std::vector<Vec2> a_p;           // pressure acceleration (Eq. 11/24)
+  std::vector<Vec2> grad_b;        // sum_b m_b grad W_ib, fixed within a step
+  std::vector<double> a_ii;        // diagonal (Eq. 22/26)
   std::vector<double> grad_scale;  // c_i of the gradient correction (compute_density)
-  std::vector<double> s;        // source term (Eq. 19)
-  std::vector<double> err;      // predicted compression of Eq. 23 [%]
+  std::vector<double> s;           // source term (Eq. 19)
+  std::vector<double> err;         // predicted compression of Eq. 23 [%]
   // Fused Jacobi sweep (Simulation::jacobi_sweep): the bounds of its ranges (one per
   // thread), for each particle the number of blocks after its own that its update
   // waits for (-1: deferred until every range is done), and the deferred particles.
   std::vector<Index> sweep_range;
   std::vector<std::int8_t> sweep_lag;
-  std::vector<Index> deferred;         // ascending
-  std::vector<double> err_partial;     // sums of err over blocks of kReduceBlock
+  std::vector<Index> deferred;       // ascending
+  std::vector<double> err_partial;   // sums of err over blocks of kReduceBlock
   std::vector<double> p_over_rho2;   // p_i / rho_i^2 of fluid particles
   std::vector<double> pb_over_rho2;  // p_b / rho0^2 of boundary particles
   std::vector<double> ext_wsum;      // sum_f W_bf of each boundary particle (Eq. 25 denominator)
@@ -64,8 +64,6 @@ class Stopwatch {
 constexpr double kMinGradientTrace = 1.6;
 
 // Relative compression of Eq. 15 in percent.
-inline double compression_percent(double rho, double rho0) {
-  return std::max(100.0 * (rho - rho0) / rho0, 0.0);
-}
+inline double compression_percent(double rho, double rho0) { return std::max(100.0 * (rho - rho0) / rho0, 0.0); }
 
 }  // namespace sluice::solver_detail

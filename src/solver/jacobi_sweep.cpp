@@ -1,8 +1,8 @@
 #include "solver/simulation.h"
 
+#include <omp.h>
 #include <algorithm>
 #include <cstdint>
-#include <omp.h>
 
 #include "core/check.h"
 #include "core/parallel.h"

@@ -33,7 +33,8 @@ namespace sluice {
 [[gnu::always_inline]] inline double Simulation::pressure_operator_of(Index i, const PressureTerms& t) const {
   const Vec2 ai = scratch_->a_p[i];
   double ap = 0.0;
-  for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) ap += (ai - scratch_->a_p[ff_.j[k]]).dot(ff_.grad[k].cast<double>());
+  for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k)
+    ap += (ai - scratch_->a_p[ff_.j[k]]).dot(ff_.grad[k].cast<double>());
   return t.dt * (t.mass * ap + t.gamma2 * ai.dot(scratch_->grad_b[i]));
 }
 

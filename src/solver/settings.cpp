@@ -6,10 +6,14 @@ const char* to_string(SolverType t) { return t == SolverType::IISPH ? "iisph" : 
 
 const char* to_string(BoundaryPressure b) {
   switch (b) {
-    case BoundaryPressure::Solved: return "solved";
-    case BoundaryPressure::Extrapolation: return "extrapolation";
-    case BoundaryPressure::Mirroring: return "mirroring";
-    case BoundaryPressure::Zero: return "zero";
+    case BoundaryPressure::Solved:
+      return "solved";
+    case BoundaryPressure::Extrapolation:
+      return "extrapolation";
+    case BoundaryPressure::Mirroring:
+      return "mirroring";
+    case BoundaryPressure::Zero:
+      return "zero";
   }
   return "?";
 }

@@ -33,9 +33,9 @@ const char* to_string(PressureInit p);
 
 struct SolverSettings {
   SolverType type = SolverType::IISPH;
-  double rest_density = 1000.0;         // rho0 [kg/m^2], > 0
-  Vec2 gravity{0.0, -9.81};             // a_ext [m/s^2]
-  double viscosity = 0.0;               // kinematic nu [m^2/s], >= 0, Eq. 12; 0 skips the pass
+  double rest_density = 1000.0;  // rho0 [kg/m^2], > 0
+  Vec2 gravity{0.0, -9.81};      // a_ext [m/s^2]
+  double viscosity = 0.0;        // kinematic nu [m^2/s], >= 0, Eq. 12; 0 skips the pass
   // Artificial viscosity of Monaghan (1992, Eq. 4.1): Pi_ij = -alpha c h mu_ij / rho_ij on
   // approaching pairs, for both solvers; >= 0, 0 skips it. 0.01 is DualSPHysics' default.
   double artificial_viscosity = 0.01;
@@ -47,9 +47,9 @@ struct SolverSettings {
   // (a scalar, pair-symmetric kernel gradient correction after Bonet & Lok 1999).
   bool gradient_correction = true;
   // IISPH (chapter 3)
-  double tolerance_percent = 0.1;       // average predicted compression error (Eq. 23) [%], > 0
-  double omega = 0.5;                   // relaxation of Eq. 21, in (0, 1]
-  int min_iterations = 3;               // [Cor+19]: at least 3 iterations
+  double tolerance_percent = 0.1;  // average predicted compression error (Eq. 23) [%], > 0
+  double omega = 0.5;              // relaxation of Eq. 21, in (0, 1]
+  int min_iterations = 3;          // [Cor+19]: at least 3 iterations
   int max_iterations = 100;
   PressureInit pressure_init = PressureInit::WarmStart;
   // Include in a_ii the dependence of the boundary pressure on p_i (mirroring: p_b = p_i
@@ -57,7 +57,7 @@ struct SolverSettings {
   // Off: Eq. 26 as printed, where the boundary enters d_ii once. See solve_pressure_iisph.
   bool boundary_diagonal = true;
   // WCSPH (section 2.3.1)
-  double stiffness = 1.0e6;             // k [Pa*m], > 0
+  double stiffness = 1.0e6;  // k [Pa*m], > 0
   // Boundaries (chapter 4)
   BoundaryPressure boundary_pressure = BoundaryPressure::Solved;
   // Boundary volume scale, V_b = gamma1 / sum_b W (section 4.1), > 0. Akinci's volume
@@ -67,8 +67,8 @@ struct SolverSettings {
   // 0.84 that row is at rest density, so a block placed against a wall starts at rest
   // instead of being pushed off in the first step (tests/test_physics.cpp checks it).
   double gamma1 = 0.84;
-  double gamma2 = 1.0;                  // boundary density contribution (section 4.1), >= 0
-  double gamma3 = 1.0;                  // boundary pressure force (Eq. 24), >= 0
+  double gamma2 = 1.0;  // boundary density contribution (section 4.1), >= 0
+  double gamma3 = 1.0;  // boundary pressure force (Eq. 24), >= 0
 };
 
 struct TimeSettings {

@@ -16,10 +16,10 @@ namespace sluice {
 // One boundary object (a wall, a container, an obstacle). Its samples are
 // boundary_x[first, first + count).
 struct BoundaryObject {
-  std::string name;   // "name" key, or "<shape><index>"
-  std::string shape;  // box | polyline | polygon | circle | ellipse
-  bool moving = false;  // has a scripted motion; false: a wall at rest (volumes computed once)
-  Motion motion;        // pose over time; boundary_x holds the samples at rest (identity pose)
+  std::string name;                // "name" key, or "<shape><index>"
+  std::string shape;               // box | polyline | polygon | circle | ellipse
+  bool moving = false;             // has a scripted motion; false: a wall at rest (volumes computed once)
+  Motion motion;                   // pose over time; boundary_x holds the samples at rest (identity pose)
   shapes::BoundaryShape geometry;  // the shape at rest (solid-side tests, e.g. leak checks)
   Index first = 0;
   Index count = 0;

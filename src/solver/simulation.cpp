@@ -61,8 +61,9 @@ Simulation::Simulation(const SimulationSetup& setup)
   SLUICE_ASSERT(setup.boundary_object.empty() || setup.boundary_object.size() == setup.boundary_x.size(),
                 "one object index per boundary sample");
   for (const BoundaryObject& obj : setup.objects)
-    SLUICE_ASSERT(obj.first >= 0 && obj.count >= 0 && obj.first + obj.count <= static_cast<Index>(setup.boundary_x.size()),
-                  "an object's samples lie within boundary_x");
+    SLUICE_ASSERT(
+        obj.first >= 0 && obj.count >= 0 && obj.first + obj.count <= static_cast<Index>(setup.boundary_x.size()),
+        "an object's samples lie within boundary_x");
   const Index n = static_cast<Index>(setup.fluid_x.size());
   fluid_.resize(n);
   for (Index i = 0; i < n; ++i) {
@@ -115,7 +116,8 @@ Simulation::Simulation(const SimulationSetup& setup)
   last_frame_ = static_cast<Index>(std::ceil(setup.time.duration * setup.time.fps - 1e-9));
   wcsph_speed_ = std::sqrt(settings_.stiffness / settings_.rest_density);
   sound_speed_ = settings_.sound_speed;
-  if (sound_speed_ <= 0) sound_speed_ = settings_.type == SolverType::WCSPH ? wcsph_speed_ : incompressible_sound_speed(setup);
+  if (sound_speed_ <= 0)
+    sound_speed_ = settings_.type == SolverType::WCSPH ? wcsph_speed_ : incompressible_sound_speed(setup);
   reorder_fluid();
   recompute_density();
   if (setup.time.settle > 0) settle();
@@ -248,7 +250,8 @@ double Simulation::choose_time_step() const {
 
 // Semi-implicit Euler (Algorithm 1/2): v(t+dt) = v* + dt a_p, x(t+dt) = x + dt v(t+dt).
 void Simulation::integrate(double dt) {
-  SLUICE_ASSERT(scratch_->a_p.size() == static_cast<size_t>(fluid_.size()), "the pressure solve left one a_p per particle");
+  SLUICE_ASSERT(scratch_->a_p.size() == static_cast<size_t>(fluid_.size()),
+                "the pressure solve left one a_p per particle");
   parallel_for(fluid_.size(), [&](Index i) {
     fluid_.v[i] += dt * scratch_->a_p[i];
     fluid_.x[i] += dt * fluid_.v[i];

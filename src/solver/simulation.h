@@ -7,12 +7,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "sph/kernel.h"
-#include "sph/neighbors.h"
-#include "sph/particles.h"
 #include "solver/settings.h"
 #include "solver/setup.h"
 #include "solver/stats.h"
+#include "sph/kernel.h"
+#include "sph/neighbors.h"
+#include "sph/particles.h"
 
 namespace sluice {
 
@@ -24,7 +24,6 @@ class SimulationUnstable : public std::runtime_error {
 };
 
 struct SolverScratch;  // per-step arrays of the pressure solvers (solver/internal.h)
-
 
 double lattice_kernel_sum(const CubicSpline2D& kernel);
 
@@ -66,8 +65,8 @@ class Simulation {
   bool finished() const { return time_ >= setup_.time.duration; }
   double time() const { return time_; }
   long steps() const { return step_; }
-  Index frame() const { return frame_; }           // last frame index reached (0 at t = 0)
-  Index frame_count() const { return last_frame_; } // index of the final frame
+  Index frame() const { return frame_; }             // last frame index reached (0 at t = 0)
+  Index frame_count() const { return last_frame_; }  // index of the final frame
 
   // The state between two steps, and its restoration: a Simulation built from the same
   // scene that restores state() continues exactly as this one would. restore() throws
@@ -105,63 +104,65 @@ class Simulation {
   void settle();                                          // TimeSettings::settle, before t = 0
   void measure_energy(StepStats& st) const;
   void find_neighbors_phase();
-  void compute_density();                 // grad W per pair, then Eq. 13 + section 4.1
-  void apply_nonpressure(double dt);      // Eq. 12 + gravity: v* = v + dt (a_v + g)
-  void solve_pressure_iisph(double dt, StepStats& st);   // prepare_pressure_system, then iterate_pressure
+  void compute_density();                               // grad W per pair, then Eq. 13 + section 4.1
+  void apply_nonpressure(double dt);                    // Eq. 12 + gravity: v* = v + dt (a_v + g)
+  void solve_pressure_iisph(double dt, StepStats& st);  // prepare_pressure_system, then iterate_pressure
   Index prepare_pressure_system(double dt);
-  double extrapolation_coupling(Index i) const;  // a_ii's share of p_i through the neighbours' p_b (Eq. 25)               // Eq. 19, 22/26, p^(0); returns the samples with a row
+  double extrapolation_coupling(Index i) const;  // a_ii's share of p_i through the neighbours' p_b (Eq. 25) // Eq. 19,
+                                                 // 22/26, p^(0); returns the samples with a row
   void iterate_pressure(double dt, Index active_samples, StepStats& st);  // Algorithm 2's solver loop
   void solve_pressure_wcsph(double dt, StepStats& st);
-  void integrate(double dt);              // semi-implicit Euler (Algorithm 1, last loop)
+  void integrate(double dt);  // semi-implicit Euler (Algorithm 1, last loop)
   void check_stability(const StepStats& st) const;
   void reorder_fluid();
   std::vector<double> boundary_volumes_from_scratch() const;  // section 4.1 for every sample (SolverProbe)
 
   // Building blocks of the pressure solvers.
-  void correct_gradients();                   // pair gradients times (c_i + c_j) / 2
-  void prepare_boundary_terms();              // grad_b, Eq. 25 weights
-  void update_boundary_pressure();            // Eq. 25 / 4.2.2 / 4.2.3 / WCSPH's solved p_b -> pb_over_rho2
-  Index prepare_solved_boundary(double dt);   // bnd_s, bnd_aii, p_b^(0); returns the samples with fluid neighbours
+  void correct_gradients();                    // pair gradients times (c_i + c_j) / 2
+  void prepare_boundary_terms();               // grad_b, Eq. 25 weights
+  void update_boundary_pressure();             // Eq. 25 / 4.2.2 / 4.2.3 / WCSPH's solved p_b -> pb_over_rho2
+  Index prepare_solved_boundary(double dt);    // bnd_s, bnd_aii, p_b^(0); returns the samples with fluid neighbours
   void add_boundary_pressure_work(double dt);  // scratch work += the pressure force's share
-  void compute_pressure_acceleration();       // Eq. 24 -> a_p
+  void compute_pressure_acceleration();        // Eq. 24 -> a_p
   // Constants of Eq. 20, 21, 23, 24 within a step, read once per sweep.
   struct PressureTerms {
     double mass, c_gamma3, gamma3_rho0, gamma2, omega, dt, err_scale;
     bool boundary_field;  // p_b from its own array (extrapolated or solved), not p_i or 0
   };
   PressureTerms pressure_terms(double dt) const;
-  double sample_operator_of(Index b, const PressureTerms& t) const;  // (Ap)_b of a pressure-boundary sample
-  double jacobi_update_boundary(const PressureTerms& t);  // Eq. 21 for every boundary sample's p_b
+  double sample_operator_of(Index b, const PressureTerms& t) const;      // (Ap)_b of a pressure-boundary sample
+  double jacobi_update_boundary(const PressureTerms& t);                 // Eq. 21 for every boundary sample's p_b
   Vec2 pressure_acceleration_of(Index i, const PressureTerms& t) const;  // Eq. 24 for one particle
-  double pressure_operator_of(Index i, const PressureTerms& t) const;      // Eq. 20: (Ap)_i from a_p
-  void jacobi_update_of(Index i, const PressureTerms& t);                 // Eq. 20, 21, 23 for one particle
+  double pressure_operator_of(Index i, const PressureTerms& t) const;    // Eq. 20: (Ap)_i from a_p
+  void jacobi_update_of(Index i, const PressureTerms& t);                // Eq. 20, 21, 23 for one particle
   Index plan_jacobi_sweep();  // block size (0: plain passes), ranges, lags, deferred particles
   Index jacobi_block_size() const;
-  void plan_jacobi_ranges();                                  // the sweep's ranges
+  void plan_jacobi_ranges();  // the sweep's ranges
   std::int8_t sweep_lag_of(Index i, Index jmin, Index jmax, Index block) const;
-  double jacobi_sweep(Index block, const PressureTerms& t);  // Eq. 24, then 20, 21, 23 for all; returns the sum of Eq. 23
+  double jacobi_sweep(Index block,
+                      const PressureTerms& t);  // Eq. 24, then 20, 21, 23 for all; returns the sum of Eq. 23
   void sweep_range(Index begin, Index end, Index block, const PressureTerms& t);
 
   // Boundaries (chapter 4).
-  void move_boundaries(double dt);            // scripted poses at time_ -> x, v, a of moving samples
-  void update_boundary_volumes();             // section 4.1 where the neighbourhood can change
+  void move_boundaries(double dt);  // scripted poses at time_ -> x, v, a of moving samples
+  void update_boundary_volumes();   // section 4.1 where the neighbourhood can change
   // Section 4.1 for the samples `which`, over the grid's points.
   void compute_volumes(const SpatialHashGrid& grid, const std::vector<Index>& which, std::vector<double>& volume) const;
-  double max_boundary_speed() const;          // fastest moving sample at time_ (for Eq. 14)
+  double max_boundary_speed() const;  // fastest moving sample at time_ (for Eq. 14)
 
   SimulationSetup setup_;
   SolverSettings settings_;
   CubicSpline2D kernel_;
-  double mass_;  // fluid particle mass rho0 h^2 [kg/m]
-  double sound_speed_ = 0;   // c of the artificial viscosity [m/s]
-  double wcsph_speed_ = 0;   // sqrt(k / rho0), WCSPH's acoustic time step [m/s]
-  long settle_steps_ = 0;    // steps taken by settle()
+  double mass_;             // fluid particle mass rho0 h^2 [kg/m]
+  double sound_speed_ = 0;  // c of the artificial viscosity [m/s]
+  double wcsph_speed_ = 0;  // sqrt(k / rho0), WCSPH's acoustic time step [m/s]
+  long settle_steps_ = 0;   // steps taken by settle()
 
   FluidParticles fluid_;
   BoundaryParticles boundary_;
 
   SpatialHashGrid fluid_grid_, boundary_grid_;
-  NeighborLists ff_, fb_, bf_;  // fluid-fluid, fluid-boundary, boundary-fluid (transpose of fb)
+  NeighborLists ff_, fb_, bf_;              // fluid-fluid, fluid-boundary, boundary-fluid (transpose of fb)
   std::unique_ptr<SolverScratch> scratch_;  // never null
   bool brute_force_ = false;
   bool boundary_velocity_in_source_ = true;

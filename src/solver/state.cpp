@@ -4,7 +4,6 @@
 #include <sstream>
 #include <string>
 
-
 namespace sluice {
 
 namespace {
@@ -58,7 +57,8 @@ void Simulation::restore(const SimulationState& s) {
     require(boundary_.moving[b] || s.boundary_x[b] == boundary_.x[b],
             "boundary sample " + std::to_string(b) + " at rest lies elsewhere than in this scene");
   require(std::isfinite(s.time) && s.time >= 0 && s.time <= setup_.time.duration,
-          "time " + std::to_string(s.time) + " s is outside this scene's 0.." + std::to_string(setup_.time.duration) + " s");
+          "time " + std::to_string(s.time) + " s is outside this scene's 0.." + std::to_string(setup_.time.duration) +
+              " s");
   require(s.step >= 0 && s.frame >= 0 && s.frame <= last_frame_,
           "step " + std::to_string(s.step) + " / frame " + std::to_string(s.frame) + " out of range (last frame " +
               std::to_string(last_frame_) + ")");

@@ -26,8 +26,7 @@ void Simulation::solve_pressure_wcsph(double dt, StepStats& st) {
   if (has_moving_boundaries()) add_boundary_pressure_work(dt);
   st.iterations = 0;
   st.avg_error_percent = st.density_error_percent;
-  st.max_error_percent =
-      parallel_max(n, 0.0, [&](Index i) { return compression_percent(fluid_.rho[i], rho0); });
+  st.max_error_percent = parallel_max(n, 0.0, [&](Index i) { return compression_percent(fluid_.rho[i], rho0); });
 }
 
 }  // namespace sluice

@@ -14,8 +14,7 @@ namespace sluice {
 
 class CubicSpline2D {
  public:
-  explicit CubicSpline2D(double h)
-      : h_(h), inv_h_(1.0 / h), alpha_(5.0 / (14.0 * M_PI * h * h)), support_(2.0 * h) {}
+  explicit CubicSpline2D(double h) : h_(h), inv_h_(1.0 / h), alpha_(5.0 / (14.0 * M_PI * h * h)), support_(2.0 * h) {}
 
   double h() const { return h_; }
   double support() const { return support_; }

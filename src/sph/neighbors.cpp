@@ -6,8 +6,8 @@
 
 #include <omp.h>
 
-#include "sph/kernel.h"
 #include "core/parallel.h"
+#include "sph/kernel.h"
 
 namespace sluice {
 
@@ -26,7 +26,8 @@ void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius, doub
   auto fit_box = [&](double minx, double maxx, double miny, double maxy) {
     x0_ = cell_coord(minx);
     y0_ = cell_coord(miny);
-    const double nx = static_cast<double>(cell_coord(maxx) - x0_ + 1), ny = static_cast<double>(cell_coord(maxy) - y0_ + 1);
+    const double nx = static_cast<double>(cell_coord(maxx) - x0_ + 1),
+                 ny = static_cast<double>(cell_coord(maxy) - y0_ + 1);
     if (!(nx * ny <= budget)) return false;
     nx_ = static_cast<std::int64_t>(nx);
     ny_ = static_cast<std::int64_t>(ny);
@@ -71,8 +72,10 @@ void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius, doub
       key_[i] = inside ? static_cast<std::uint32_t>(cy * nx_ + cx) : cells;
       outliers_ += !inside;
     }
-    if (outliers_ > n / 100 + 16) dense_ = false;  // too many: hash instead
-    else ++cells;  // the outlier cell
+    if (outliers_ > n / 100 + 16)
+      dense_ = false;  // too many: hash instead
+    else
+      ++cells;  // the outlier cell
   }
   if (!dense_) {
     cells = std::bit_ceil(static_cast<std::uint32_t>(std::max<size_t>(2 * n, 64)));
@@ -96,9 +99,8 @@ void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius, doub
 // One query per particle: each thread lists the pairs of a contiguous chunk of queries
 // into its own buffer; the chunks are then copied into place after a prefix sum. The
 // result does not depend on the number of threads.
-void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid,
-                    const CubicSpline2D& kernel, bool exclude_self, PairCache cache,
-                    NeighborLists& out) {
+void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid, const CubicSpline2D& kernel,
+                    bool exclude_self, PairCache cache, NeighborLists& out) {
   const Index n = static_cast<Index>(query.size());
   const double radius = kernel.support();
   out.offset.resize(static_cast<size_t>(n) + 1);
@@ -129,8 +131,8 @@ void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid,
   fill_pair_cache(query, grid.points(), kernel, cache, out);
 }
 
-void find_neighbors_brute_force(const std::vector<Vec2>& query, const std::vector<Vec2>& points,
-                                double radius, bool exclude_self, NeighborLists& out) {
+void find_neighbors_brute_force(const std::vector<Vec2>& query, const std::vector<Vec2>& points, double radius,
+                                bool exclude_self, NeighborLists& out) {
   const Index n = static_cast<Index>(query.size());
   const Index m = static_cast<Index>(points.size());
   const double r2 = radius * radius;
@@ -189,8 +191,8 @@ std::vector<Index> spatial_order(const std::vector<Vec2>& points, double cell_si
 
 namespace sluice {
 
-void fill_pair_cache(const std::vector<Vec2>& query, const std::vector<Vec2>& points,
-                     const CubicSpline2D& kernel, PairCache cache, NeighborLists& lists) {
+void fill_pair_cache(const std::vector<Vec2>& query, const std::vector<Vec2>& points, const CubicSpline2D& kernel,
+                     PairCache cache, NeighborLists& lists) {
   const Index n = static_cast<Index>(query.size());
   lists.grad.resize(cache.grad ? lists.j.size() : 0);
   lists.w.resize(cache.w ? lists.j.size() : 0);

@@ -27,8 +27,8 @@ namespace sluice {
 struct NeighborLists {
   std::vector<Index> offset;  // size n + 1
   std::vector<Index> j;
-  std::vector<Vec2f> grad;    // grad W(x_i - x_j), filled when requested
-  std::vector<double> w;      // W(|x_i - x_j|), filled when requested
+  std::vector<Vec2f> grad;  // grad W(x_i - x_j), filled when requested
+  std::vector<double> w;    // W(|x_i - x_j|), filled when requested
 
   Index count(Index i) const { return offset[i + 1] - offset[i]; }
   Index pairs() const { return offset.empty() ? 0 : offset.back(); }
@@ -75,7 +75,8 @@ class SpatialHashGrid {
       const std::int64_t c1 = std::min<std::int64_t>(cx + kReach - x0_, nx_ - 1);
       const std::int64_t r0 = std::max<std::int64_t>(cy - kReach - y0_, 0);
       const std::int64_t r1 = std::min<std::int64_t>(cy + kReach - y0_, ny_ - 1);
-      for (std::int64_t row = r0; c0 <= c1 && row <= r1; ++row) visit(start_[row * nx_ + c0], start_[row * nx_ + c1 + 1]);
+      for (std::int64_t row = r0; c0 <= c1 && row <= r1; ++row)
+        visit(start_[row * nx_ + c0], start_[row * nx_ + c1 + 1]);
       const std::int64_t outlier_cell = nx_ * ny_;
       visit(start_[outlier_cell], start_[outlier_cell + 1]);
       return used;
@@ -123,14 +124,14 @@ class SpatialHashGrid {
   double inv_cell_ = 1.0;
   bool dense_ = false;
   std::int64_t x0_ = 0, y0_ = 0, nx_ = 0, ny_ = 0;  // dense grid: first cell and size
-  size_t outliers_ = 0;                            // dense grid: points outside the box (cell nx_ * ny_)
-  std::uint32_t mask_ = 0;                         // hashed grid: buckets - 1
-  std::vector<std::uint32_t> start_;  // cell (or bucket) c holds entries [start_[c], start_[c+1])
-  std::vector<Index> entries_;        // point indices in cell order
-  std::vector<Vec2> pos_;             // their positions, same order
-  std::vector<std::uint32_t> key_;    // scratch: cell of each point
-  std::vector<std::uint32_t> fill_;   // scratch: next free entry of each cell
-  std::vector<double> coord_;         // scratch: coordinates for the quantile box
+  size_t outliers_ = 0;                             // dense grid: points outside the box (cell nx_ * ny_)
+  std::uint32_t mask_ = 0;                          // hashed grid: buckets - 1
+  std::vector<std::uint32_t> start_;                // cell (or bucket) c holds entries [start_[c], start_[c+1])
+  std::vector<Index> entries_;                      // point indices in cell order
+  std::vector<Vec2> pos_;                           // their positions, same order
+  std::vector<std::uint32_t> key_;                  // scratch: cell of each point
+  std::vector<std::uint32_t> fill_;                 // scratch: next free entry of each cell
+  std::vector<double> coord_;                       // scratch: coordinates for the quantile box
 };
 
 // Options of a neighbour list build.
@@ -143,13 +144,12 @@ class CubicSpline2D;
 
 // Lists, for every query point i, the grid points within the kernel support.
 // With exclude_self, the point with the same index is skipped (fluid against itself).
-void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid,
-                    const CubicSpline2D& kernel, bool exclude_self, PairCache cache,
-                    NeighborLists& out);
+void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid, const CubicSpline2D& kernel,
+                    bool exclude_self, PairCache cache, NeighborLists& out);
 
 // O(n m) reference search, same output format (neighbours sorted by index).
-void find_neighbors_brute_force(const std::vector<Vec2>& query, const std::vector<Vec2>& points,
-                                double radius, bool exclude_self, NeighborLists& out);
+void find_neighbors_brute_force(const std::vector<Vec2>& query, const std::vector<Vec2>& points, double radius,
+                                bool exclude_self, NeighborLists& out);
 
 // Cell-ordered permutation of points (Morton order of grid cells, stable inside a
 // cell), used to reorder particle arrays for cache locality.
@@ -160,8 +160,8 @@ std::vector<Index> spatial_order(const std::vector<Vec2>& points, double cell_si
 namespace sluice {
 // Fills lists.grad / lists.w of existing lists from the positions (used after a
 // brute-force search, and by tests).
-void fill_pair_cache(const std::vector<Vec2>& query, const std::vector<Vec2>& points,
-                     const CubicSpline2D& kernel, PairCache cache, NeighborLists& lists);
+void fill_pair_cache(const std::vector<Vec2>& query, const std::vector<Vec2>& points, const CubicSpline2D& kernel,
+                     PairCache cache, NeighborLists& lists);
 
 // lists of boundary -> fluid pairs from fluid -> boundary pairs, keeping W and grad W.
 void transpose_neighbors(const NeighborLists& fb, Index boundary_count, NeighborLists& bf);

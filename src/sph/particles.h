@@ -17,10 +17,10 @@ void apply_permutation(std::vector<T>& a, const std::vector<Index>& order, std::
 }
 
 struct FluidParticles {
-  std::vector<Vec2> x, v;    // position [m], velocity [m/s]
-  std::vector<double> rho;   // density of the current step (Eq. 13) [kg/m^2]
-  std::vector<double> p;     // pressure [Pa m]; kept between steps for warm starts
-  std::vector<Index> id;     // index in the scene's initial order (stable under reorders)
+  std::vector<Vec2> x, v;   // position [m], velocity [m/s]
+  std::vector<double> rho;  // density of the current step (Eq. 13) [kg/m^2]
+  std::vector<double> p;    // pressure [Pa m]; kept between steps for warm starts
+  std::vector<Index> id;    // index in the scene's initial order (stable under reorders)
 
   Index size() const { return static_cast<Index>(x.size()); }
   void resize(Index n) {
@@ -33,13 +33,13 @@ struct FluidParticles {
 };
 
 struct BoundaryParticles {
-  std::vector<Vec2> x, v;        // position [m], velocity [m/s] (zero for walls at rest)
-  std::vector<Vec2> a;           // acceleration [m/s^2] (Eq. 25 uses g - a_b)
-  std::vector<Vec2> x0;          // position at rest (the scene's sample; identity pose)
+  std::vector<Vec2> x, v;            // position [m], velocity [m/s] (zero for walls at rest)
+  std::vector<Vec2> a;               // acceleration [m/s^2] (Eq. 25 uses g - a_b)
+  std::vector<Vec2> x0;              // position at rest (the scene's sample; identity pose)
   std::vector<std::uint8_t> moving;  // 1: on an object with a scripted motion
-  std::vector<double> volume;    // V_b = gamma1 / sum_b W (section 4.1) [m^2]
-  std::vector<double> p;         // extrapolated pressure (Eq. 25) [Pa m]
-  std::vector<Index> object;     // index of the scene's boundary object
+  std::vector<double> volume;        // V_b = gamma1 / sum_b W (section 4.1) [m^2]
+  std::vector<double> p;             // extrapolated pressure (Eq. 25) [Pa m]
+  std::vector<Index> object;         // index of the scene's boundary object
 
   Index size() const { return static_cast<Index>(x.size()); }
 };

@@ -112,9 +112,9 @@ Image compose_montage(const std::vector<MontageCell>& cells, int columns, const 
   check_cells(cells);
   size_t lines = 0;
   for (const MontageCell& c : cells) lines = std::max(lines, c.labels.size());
-  const MontageLayout L = montage_layout(cells.front().image.width, cells.front().image.height,
-                                         static_cast<int>(cells.size()), columns, static_cast<int>(lines),
-                                         !title.empty(), colorbar);
+  const MontageLayout L =
+      montage_layout(cells.front().image.width, cells.front().image.height, static_cast<int>(cells.size()), columns,
+                     static_cast<int>(lines), !title.empty(), colorbar);
   const int s = L.scale;
   Image out(L.width, L.height);
   fill_rect(out, 0, 0, out.width, out.height, kBackground);

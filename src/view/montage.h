@@ -26,12 +26,12 @@ struct MontageColorbar {
 // Where everything goes, from the cell size and count alone, so that tests (and anyone
 // cropping a cell out again) know the exact pixel positions.
 struct MontageLayout {
-  int scale = 1;          // spacing unit (labels are 10 + 4 * scale pixels high)
+  int scale = 1;  // spacing unit (labels are 10 + 4 * scale pixels high)
   int columns = 1, rows = 1;
   int cell_w = 0, cell_h = 0;
   int margin = 0, gap = 0;
-  int title_h = 0;        // band of the title at the top (0 without a title)
-  int band_h = 0;         // label band above each cell
+  int title_h = 0;                                 // band of the title at the top (0 without a title)
+  int band_h = 0;                                  // label band above each cell
   int bar_x = 0, bar_y = 0, bar_w = 0, bar_h = 0;  // colorbar (bar_w == 0: none)
   int width = 0, height = 0;
   // Top-left corner of cell `i` (row-major) inside the montage.

@@ -53,9 +53,9 @@ struct NamedColor {
   render::Rgb rgb;
 };
 constexpr NamedColor kNamedColors[] = {
-    {"white", {255, 255, 255}}, {"black", {0, 0, 0}},       {"grey", {150, 150, 150}},  {"gray", {150, 150, 150}},
-    {"lightgrey", {210, 210, 210}}, {"darkgrey", {90, 90, 90}}, {"slate", {84, 100, 124}}, {"red", {200, 40, 40}},
-    {"green", {40, 150, 60}},   {"blue", {40, 80, 200}},    {"orange", {235, 140, 30}}, {"brown", {130, 85, 50}}};
+    {"white", {255, 255, 255}},     {"black", {0, 0, 0}},       {"grey", {150, 150, 150}},  {"gray", {150, 150, 150}},
+    {"lightgrey", {210, 210, 210}}, {"darkgrey", {90, 90, 90}}, {"slate", {84, 100, 124}},  {"red", {200, 40, 40}},
+    {"green", {40, 150, 60}},       {"blue", {40, 80, 200}},    {"orange", {235, 140, 30}}, {"brown", {130, 85, 50}}};
 
 // Object colours: NAME=COLOUR each, the name one of the scene's objects.
 void resolve_object_colors(const ImageOptions& o, const Scene& scene, ImageConfig& c) {
@@ -98,10 +98,14 @@ std::optional<render::Rgb> parse_color(const std::string& text) {
 
 const char* field_label(Field f) {
   switch (f) {
-    case Field::cfl: return "CFL";
-    case Field::speed: return "speed [m/s]";
-    case Field::pressure: return "pressure [Pa\u00b7m]";
-    case Field::density_error: return "density error [%]";
+    case Field::cfl:
+      return "CFL";
+    case Field::speed:
+      return "speed [m/s]";
+    case Field::pressure:
+      return "pressure [Pa\u00b7m]";
+    case Field::density_error:
+      return "density error [%]";
   }
   return "";
 }
@@ -118,7 +122,8 @@ std::string overlay_text(Overlay mode, double time, Index frame, long step, int 
   if (mode == Overlay::time)
     std::snprintf(buf, sizeof buf, "t = %.3f s", time);
   else
-    std::snprintf(buf, sizeof buf, "t = %.3f s    frame %d    step %ld    iterations %d", time, frame, step, iterations);
+    std::snprintf(buf, sizeof buf, "t = %.3f s    frame %d    step %ld    iterations %d", time, frame, step,
+                  iterations);
   return mode == Overlay::none ? std::string() : std::string(buf);
 }
 
@@ -137,10 +142,18 @@ void automatic_range(Field f, const Scene& scene, double& lo, double& hi) {
   for (const Vec2& v : scene.fluid_v) vmax0 = std::max(vmax0, v.norm());
   lo = 0;
   switch (f) {
-    case Field::cfl: hi = 1; break;
-    case Field::speed: hi = std::max(std::sqrt(2 * g * height), vmax0); break;
-    case Field::pressure: hi = scene.solver.rest_density * g * height; break;
-    case Field::density_error: hi = 1; break;
+    case Field::cfl:
+      hi = 1;
+      break;
+    case Field::speed:
+      hi = std::max(std::sqrt(2 * g * height), vmax0);
+      break;
+    case Field::pressure:
+      hi = scene.solver.rest_density * g * height;
+      break;
+    case Field::density_error:
+      hi = 1;
+      break;
   }
   if (!(hi > 0)) hi = 1;  // no gravity and no motion: any scale
 }
@@ -171,7 +184,8 @@ ImageConfig resolve_image(const ImageOptions& o, const Scene& scene) {
     c.hi = rs.range_hi;
   } else if (!parse_pair(o.range, c.lo, c.hi) || !(c.hi > c.lo) || !std::isfinite(c.hi - c.lo)) {
     // hi - lo finite: no NaN or infinity, and the colour (v - lo) / (hi - lo) is defined.
-    throw FlagError("--range", o.range, "expected lo:hi, finite numbers with lo < hi and hi - lo finite, e.g. 0:1, or auto");
+    throw FlagError("--range", o.range,
+                    "expected lo:hi, finite numbers with lo < hi and hi - lo finite, e.g. 0:1, or auto");
   }
   c.frame.field_label = field_label(c.field);
   c.frame.colorbar = !o.no_colorbar;
@@ -179,7 +193,8 @@ ImageConfig resolve_image(const ImageOptions& o, const Scene& scene) {
   c.frame.overlay = c.overlay != Overlay::none;
   c.frame.title = o.title;
   if (!(o.particle_scale > 0 && o.particle_scale <= 10))
-    throw FlagError("--particle-scale", number_text(o.particle_scale), "expected a number > 0 and <= 10 (1: discs of one spacing)");
+    throw FlagError("--particle-scale", number_text(o.particle_scale),
+                    "expected a number > 0 and <= 10 (1: discs of one spacing)");
   c.frame.particle_scale = o.particle_scale;
   if (!o.background.empty()) {
     const auto bg = parse_color(o.background);
@@ -210,8 +225,9 @@ FrameBuilder::FrameBuilder(const ImageConfig& c, const Simulation& sim) : c_(c) 
   const std::vector<Index>& object = sim.boundary().object;
   for (size_t i = 0; i < sim.boundary().x.size(); ++i) {
     const size_t k = i < object.size() ? static_cast<size_t>(object[i]) : c_.object_rgb.size();
-    boundary_rgb_.push_back(k < c_.object_rgb.size() ? c_.object_rgb[k]
-                            : sim.boundary().moving[i] ? kMovingWall : kWall);
+    boundary_rgb_.push_back(k < c_.object_rgb.size()   ? c_.object_rgb[k]
+                            : sim.boundary().moving[i] ? kMovingWall
+                                                       : kWall);
   }
 }
 
@@ -224,10 +240,18 @@ FrameData FrameBuilder::build(const Simulation& sim, Index frame, const StepStat
   for (size_t i = 0; i < values_.size(); ++i) {
     double v = 0;
     switch (c_.field) {
-      case Field::cfl: v = f.v[i].norm() * dt / scene.spacing; break;  // the thesis' velocity colouring
-      case Field::speed: v = f.v[i].norm(); break;
-      case Field::pressure: v = f.p[i]; break;
-      case Field::density_error: v = std::max(f.rho[i] / rho0 - 1.0, 0.0) * 100.0; break;  // Eq. 15
+      case Field::cfl:
+        v = f.v[i].norm() * dt / scene.spacing;
+        break;  // the thesis' velocity colouring
+      case Field::speed:
+        v = f.v[i].norm();
+        break;
+      case Field::pressure:
+        v = f.p[i];
+        break;
+      case Field::density_error:
+        v = std::max(f.rho[i] / rho0 - 1.0, 0.0) * 100.0;
+        break;  // Eq. 15
     }
     values_[i] = static_cast<float>(v);
   }

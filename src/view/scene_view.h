@@ -29,19 +29,19 @@ class FlagError : public std::runtime_error {
 // Image flags shared by `render` and `still`. An empty string takes the scene's
 // `render` section (whose defaults are 1280x720, cfl, spectrum, automatic range).
 struct ImageOptions {
-  std::string resolution;  // WxH
-  std::string color_by;    // cfl | speed | pressure | density_error
-  std::string colormap;    // spectrum | viridis | turbo
-  std::string range;       // "lo:hi" or "auto"
-  std::string overlay;     // full | time | none (empty: full)
-  bool no_overlay = false; // the older spelling of --overlay none
-  std::string title;       // a title row above the scene (none when empty)
+  std::string resolution;   // WxH
+  std::string color_by;     // cfl | speed | pressure | density_error
+  std::string colormap;     // spectrum | viridis | turbo
+  std::string range;        // "lo:hi" or "auto"
+  std::string overlay;      // full | time | none (empty: full)
+  bool no_overlay = false;  // the older spelling of --overlay none
+  std::string title;        // a title row above the scene (none when empty)
   bool no_colorbar = false;
-  double particle_scale = 1;  // disc diameter over the spacing, 0 < s <= 10
-  std::string background;     // colour (empty: white)
+  double particle_scale = 1;               // disc diameter over the spacing, 0 < s <= 10
+  std::string background;                  // colour (empty: white)
   std::vector<std::string> object_colors;  // NAME=COLOUR, one per boundary object named
-  int msaa = 0;            // 0 or 4
-  std::string egl = "auto";  // auto | surfaceless | device
+  int msaa = 0;                            // 0 or 4
+  std::string egl = "auto";                // auto | surfaceless | device
 };
 
 enum class Field { cfl, speed, pressure, density_error };

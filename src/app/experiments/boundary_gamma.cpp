@@ -22,13 +22,18 @@ double halton(int i, int b) {
 
 void boundary_gamma(Context& c) {
   const int samples = c.quick ? 2 : 6;
-  analysis::CsvWriter csv("method,gamma1,gamma2,gamma3,stable,avg_iterations,avg_density_error_percent,s_per_simulated_s,best");
+  analysis::CsvWriter csv(
+      "method,gamma1,gamma2,gamma3,stable,avg_iterations,avg_density_error_percent,s_per_simulated_s,best");
   analysis::CsvWriter best_csv("method,gamma1,gamma2,gamma3,avg_iterations,avg_density_error_percent");
-  c.md += "For each boundary method, the scene's gammas (0.84, 1, 1) and " + std::to_string(samples) +
-          " Halton samples of gamma1 in [0.7, 1.1], gamma2 in [0.7, 1.3], gamma3 in [0.7, 1.5] on the breaking dam "
-          "at h = " + std::string(c.quick ? "0.05" : "0.02") + " with dt = 2 ms. The best sample has the fewest average iterations among the stable runs whose average density "
-          "error stays within 0.2 % (twice the tolerance: a gamma that lets the fluid compress or leak does not count). "
-          "Compare with the thesis' Figure 9 (a local optimum of a random search, like this one).\n\n| method | gamma1 | gamma2 | gamma3 | avg iterations | avg density error % |\n|---|---|---|---|---|---|\n";
+  c.md +=
+      "For each boundary method, the scene's gammas (0.84, 1, 1) and " + std::to_string(samples) +
+      " Halton samples of gamma1 in [0.7, 1.1], gamma2 in [0.7, 1.3], gamma3 in [0.7, 1.5] on the breaking dam "
+      "at h = " +
+      std::string(c.quick ? "0.05" : "0.02") +
+      " with dt = 2 ms. The best sample has the fewest average iterations among the stable runs whose average density "
+      "error stays within 0.2 % (twice the tolerance: a gamma that lets the fluid compress or leak does not count). "
+      "Compare with the thesis' Figure 9 (a local optimum of a random search, like this one).\n\n| method | gamma1 | "
+      "gamma2 | gamma3 | avg iterations | avg density error % |\n|---|---|---|---|---|---|\n";
   for (const char* method : kMethods) {
     struct Sample {
       double g[3];
@@ -48,7 +53,9 @@ void boundary_gamma(Context& c) {
     std::size_t best = runs.size();
     for (std::size_t i = 0; i < runs.size(); ++i) {
       const SweepRun& r = runs[i].r;
-      if (r.stable && r.avg_density_error <= 0.2 && (best == runs.size() || r.avg_iterations < runs[best].r.avg_iterations)) best = i;
+      if (r.stable && r.avg_density_error <= 0.2 &&
+          (best == runs.size() || r.avg_iterations < runs[best].r.avg_iterations))
+        best = i;
     }
     for (std::size_t i = 0; i < runs.size(); ++i) {
       const SweepRun& r = runs[i].r;
@@ -58,9 +65,10 @@ void boundary_gamma(Context& c) {
     }
     if (best < runs.size()) {
       const Sample& b = runs[best];
-      best_csv.row({method, fmt(b.g[0], 4), fmt(b.g[1], 4), fmt(b.g[2], 4), fmt(b.r.avg_iterations, 4), fmt(b.r.avg_density_error, 4)});
-      c.md += std::string("| ") + method + " | " + fmt(b.g[0], 3) + " | " + fmt(b.g[1], 3) + " | " + fmt(b.g[2], 3) + " | " +
-              fmt(b.r.avg_iterations, 4) + " | " + fmt(b.r.avg_density_error, 3) + " |\n";
+      best_csv.row({method, fmt(b.g[0], 4), fmt(b.g[1], 4), fmt(b.g[2], 4), fmt(b.r.avg_iterations, 4),
+                    fmt(b.r.avg_density_error, 4)});
+      c.md += std::string("| ") + method + " | " + fmt(b.g[0], 3) + " | " + fmt(b.g[1], 3) + " | " + fmt(b.g[2], 3) +
+              " | " + fmt(b.r.avg_iterations, 4) + " | " + fmt(b.r.avg_density_error, 3) + " |\n";
     } else {
       c.md += std::string("| ") + method + " | no sample qualified | | | | |\n";
     }
@@ -75,7 +83,8 @@ void boundary_gamma(Context& c) {
     a.highlight = "best=1";
     a.where = {std::string("method=") + method, "stable=1"};
     a.labels = {std::string("pressure ") + method};
-    c.figure(a, std::string("gamma1 against gamma3 for ") + method + ", coloured by average iterations, best ringed (thesis Figure 9)");
+    c.figure(a, std::string("gamma1 against gamma3 for ") + method +
+                    ", coloured by average iterations, best ringed (thesis Figure 9)");
   }
 }
 

@@ -30,8 +30,8 @@ void boundary_iterations(Context& c) {
       steps.row({method, fmt(st.time), std::to_string(st.iterations), fmt(st.density_error_percent, 5)});
     });
     print_run(method, r);
-    means.row({method, g == gammas.end() ? "scene" : analysis::csv_quote(analysis::join(g->second, " ")), r.stable ? "1" : "0",
-               std::to_string(r.steps), fmt(r.avg_iterations, 4), fmt(r.avg_density_error, 4)});
+    means.row({method, g == gammas.end() ? "scene" : analysis::csv_quote(analysis::join(g->second, " ")),
+               r.stable ? "1" : "0", std::to_string(r.steps), fmt(r.avg_iterations, 4), fmt(r.avg_density_error, 4)});
   }
   steps.write(c.dir / "iterations.csv");
   means.write(c.dir / "means.csv");
@@ -44,7 +44,9 @@ void boundary_iterations(Context& c) {
   c.table(c.dir / "means.csv", {});
   FigureSpec a = spec(FigureKind::Box, c.dir / "iterations.csv", "", {"iterations"}, "iterations_by_method.png");
   a.group = "method";
-  c.figure(a, "Distribution of the solver iterations per step for each boundary method; the dot is the mean (thesis Figure 10)");
+  c.figure(a,
+           "Distribution of the solver iterations per step for each boundary method; the dot is the mean (thesis "
+           "Figure 10)");
 }
 
 }  // namespace sluice::app::experiments

@@ -17,7 +17,8 @@ void boundary_pressure(Context& c) {
   c.md += "The hydrostatic tank (`" + m.scene + "`) at t = " + m.times +
           " s, coloured by pressure on one shared scale, once per boundary method. Compare with the thesis' Figure 8: "
           "extrapolation continues the pressure into the wall, zero pressure loads the first fluid rows instead.\n\n";
-  montage_figure(c, m, "pressure_by_method.png", "Pressure field for pressure extrapolation, mirroring and zero pressure (thesis Figure 8)");
+  montage_figure(c, m, "pressure_by_method.png",
+                 "Pressure field for pressure extrapolation, mirroring and zero pressure (thesis Figure 8)");
 }
 
 }  // namespace sluice::app::experiments

@@ -52,8 +52,9 @@ FigureSpec spec(FigureKind kind, const fs::path& csv, const std::string& x, std:
 }
 
 void print_run(const std::string& what, const SweepRun& r) {
-  std::printf("  %-42s %-5s %8ld steps %8.2f iters %9.4f %% err %9.3f s/sim-s%s\n", what.c_str(), r.solver.c_str(), r.steps,
-              r.avg_iterations, r.avg_density_error, r.seconds_per_simulated_second(), r.stable ? "" : "  UNSTABLE");
+  std::printf("  %-42s %-5s %8ld steps %8.2f iters %9.4f %% err %9.3f s/sim-s%s\n", what.c_str(), r.solver.c_str(),
+              r.steps, r.avg_iterations, r.avg_density_error, r.seconds_per_simulated_second(),
+              r.stable ? "" : "  UNSTABLE");
   std::fflush(stdout);
 }
 
@@ -70,7 +71,8 @@ const char* const kMethods[3] = {"extrapolation", "mirroring", "zero"};
 // at its minimum of 3 iterations on almost every step, and no method or gamma can show
 // a difference.
 std::vector<std::string> boundary_scene(const Context& c, double duration) {
-  return {c.quick ? "spacing=0.05" : "spacing=0.02", "time.dt=2e-3", number_override("time.duration", c.quick ? 0.2 : duration)};
+  return {c.quick ? "spacing=0.05" : "spacing=0.02", "time.dt=2e-3",
+          number_override("time.duration", c.quick ? 0.2 : duration)};
 }
 
 // Wall milliseconds per step of `scene` for each thread count, `repeat` rounds with the
@@ -78,9 +80,9 @@ std::vector<std::string> boundary_scene(const Context& c, double duration) {
 // hits every thread count alike. ms[t][r]: thread count t, round r. after_run(t, run),
 // when given, runs right after each run, still with threads[t] threads (reference loops
 // timed in the same spell of load, per-thread-count results).
-std::vector<std::vector<double>> interleaved_ms_per_step(const Scene& scene, const std::vector<int>& threads, int repeat,
-                                                         SweepRun* last,
-                                                         const std::function<void(std::size_t, const SweepRun&)>& after_run) {
+std::vector<std::vector<double>> interleaved_ms_per_step(
+    const Scene& scene, const std::vector<int>& threads, int repeat, SweepRun* last,
+    const std::function<void(std::size_t, const SweepRun&)>& after_run) {
   std::vector<std::vector<double>> ms(threads.size());
   for (int r = 0; r < repeat; ++r)
     for (std::size_t t = 0; t < threads.size(); ++t) {

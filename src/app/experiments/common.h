@@ -71,9 +71,9 @@ std::vector<std::string> boundary_scene(const Context& c, double duration);
 // hits every thread count alike. ms[t][r]: thread count t, round r. after_run(t, run),
 // when given, runs right after each run, still with threads[t] threads (reference loops
 // timed in the same spell of load, per-thread-count results).
-std::vector<std::vector<double>> interleaved_ms_per_step(const Scene& scene, const std::vector<int>& threads, int repeat,
-                                                         SweepRun* last = nullptr,
-                                                         const std::function<void(std::size_t, const SweepRun&)>& after_run = {});
+std::vector<std::vector<double>> interleaved_ms_per_step(
+    const Scene& scene, const std::vector<int>& threads, int repeat, SweepRun* last = nullptr,
+    const std::function<void(std::size_t, const SweepRun&)>& after_run = {});
 double median(std::vector<double> v);
 double mean(const std::vector<double>& v);
 

@@ -22,9 +22,10 @@ void dam_break_iterations(Context& c) {
   stats.finish();
   print_run(scene.name, r);
   c.md += "Scene `" + c.scene_path("dam_break.json") + "`: " + std::to_string(r.particles) + " particles, " +
-          std::to_string(r.steps) + " steps to t = " + fmt(r.simulated, 4) + " s" + (r.stable ? "" : " (UNSTABLE: " + r.message + ")") +
-          ". Average iterations " + fmt(r.avg_iterations, 4) + " (largest " + std::to_string(max_iterations) +
-          "), average density error " + fmt(r.avg_density_error, 3) + " %.\n\n";
+          std::to_string(r.steps) + " steps to t = " + fmt(r.simulated, 4) + " s" +
+          (r.stable ? "" : " (UNSTABLE: " + r.message + ")") + ". Average iterations " + fmt(r.avg_iterations, 4) +
+          " (largest " + std::to_string(max_iterations) + "), average density error " + fmt(r.avg_density_error, 3) +
+          " %.\n\n";
   FigureSpec a = spec(FigureKind::Series, c.dir / "stats.csv", "time", {"iterations"}, "iterations.png");
   a.mean = true;
   c.figure(a, "Solver iterations per step over time, with their mean (thesis Figure 3, left)");

@@ -16,11 +16,14 @@ void scaling(Context& c) {
   // little with the width (the tolerance is on the average error), so each width also
   // runs with a fixed number of Jacobi iterations: then the work per particle-step is
   // exactly the same and any growth of its time is the implementation's.
-  const std::vector<long> counts = c.quick ? std::vector<long>{2000, 8000} : std::vector<long>{10000, 30000, 100000, 300000, 1000000};
+  const std::vector<long> counts =
+      c.quick ? std::vector<long>{2000, 8000} : std::vector<long>{10000, 30000, 100000, 300000, 1000000};
   constexpr int kFixedIterations = 6;
   const double start_load = load_average();
-  analysis::CsvWriter csv("particles,width,steps,avg_iterations,ms_per_step,us_per_particle_step,ratio_to_first,us_neighbors_per_particle,"
-          "us_pressure_per_particle_iteration,fixed_iterations,us_per_particle_step_fixed_iterations,ratio_to_first_fixed_iterations");
+  analysis::CsvWriter csv(
+      "particles,width,steps,avg_iterations,ms_per_step,us_per_particle_step,ratio_to_first,us_neighbors_per_particle,"
+      "us_pressure_per_particle_iteration,fixed_iterations,us_per_particle_step_fixed_iterations,ratio_to_first_fixed_"
+      "iterations");
   // Every width with and without fixed iterations, the runs of one round in a row and the
   // rounds repeated, so that a slow spell of a shared machine hits every width alike.
   // Small widths repeat their run within a round (the round's figure is the mean per
@@ -59,8 +62,8 @@ void scaling(Context& c) {
     if (first == 0) first = us, first_fixed = us_fixed;
     lo = std::min(lo, us), hi = std::max(hi, us);
     lo_fixed = std::min(lo_fixed, us_fixed), hi_fixed = std::max(hi_fixed, us_fixed);
-    std::printf("  %8ld particles: %.4f us per particle-step (%.2f iterations), %.4f with %d fixed iterations\n", r.particles,
-                us, r.avg_iterations, us_fixed, kFixedIterations);
+    std::printf("  %8ld particles: %.4f us per particle-step (%.2f iterations), %.4f with %d fixed iterations\n",
+                r.particles, us, r.avg_iterations, us_fixed, kFixedIterations);
     // The split of the last fixed-iteration run: the neighbour phase per particle, and the
     // pressure solve per particle and iteration.
     csv.row({std::to_string(r.particles), fmt(w.width, 5), std::to_string(r.steps), fmt(r.avg_iterations, 4),
@@ -72,12 +75,14 @@ void scaling(Context& c) {
   c.md += "A layer 0.5 m deep widened from " + std::to_string(counts.front()) + " to " + std::to_string(counts.back()) +
           " particles, 20 steps of 0.5 ms, at the solver's tolerance and with " + std::to_string(kFixedIterations) +
           " fixed Jacobi iterations (the same work per particle at every width); " +
-          (c.quick ? "1 round" : "median of 5 rounds, each round running every width and variant in turn (widths under 300k "
-                                 "repeat their run 300k / n times within a round)") + ", " + std::to_string(omp_get_max_threads()) +
-          " threads, load average " + fmt(start_load, 3) +
+          (c.quick ? "1 round"
+                   : "median of 5 rounds, each round running every width and variant in turn (widths under 300k "
+                     "repeat their run 300k / n times within a round)") +
+          ", " + std::to_string(omp_get_max_threads()) + " threads, load average " + fmt(start_load, 3) +
           " at the start. Target: the time per particle-step within 25 % over the range (O(n)). Measured: largest / "
-          "smallest = " + fmt(hi / lo, 3) + " at the tolerance (iterations grow with the width), " +
-          fmt(hi_fixed / lo_fixed, 3) + " with fixed iterations.\n\n";
+          "smallest = " +
+          fmt(hi / lo, 3) + " at the tolerance (iterations grow with the width), " + fmt(hi_fixed / lo_fixed, 3) +
+          " with fixed iterations.\n\n";
   c.table(c.dir / "scaling.csv", {});
   FigureSpec a = spec(FigureKind::Series, c.dir / "scaling.csv", "particles",
                       {"us_per_particle_step", "us_per_particle_step_fixed_iterations", "us_neighbors_per_particle",
@@ -86,7 +91,9 @@ void scaling(Context& c) {
   a.ylabel = "wall time [µs]";
   a.style = "linespoints";
   a.logx = true;
-  c.figure(a, "Wall time per particle-step against particle count (flat = O(n)), at the tolerance and with fixed iterations");
+  c.figure(
+      a,
+      "Wall time per particle-step against particle count (flat = O(n)), at the tolerance and with fixed iterations");
 }
 
 }  // namespace sluice::app::experiments

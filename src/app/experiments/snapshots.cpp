@@ -12,7 +12,8 @@ void snapshots(Context& c) {
   m.cell = c.quick ? "160x160" : "320x320";
   if (c.quick) m.set = {"spacing=0.04"};
   m.title = "Dam break, coloured by CFL number";
-  c.md += "The breaking dam (`" + m.scene + "`) at " + m.times + " s, coloured by CFL number. Compare with the thesis' "
+  c.md += "The breaking dam (`" + m.scene + "`) at " + m.times +
+          " s, coloured by CFL number. Compare with the thesis' "
           "Figure 2 (130k particles: `--scene scenes/dam_break_130k.json`).\n\n";
   montage_figure(c, m, "dam_break_snapshots.png", "Breaking dam snapshots with their times (thesis Figure 2)");
 }

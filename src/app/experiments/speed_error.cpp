@@ -31,15 +31,18 @@ std::string crossover_text(std::vector<SweepRun> runs) {
   // Runs of the same solver along the front: each is the faster choice over its errors.
   std::vector<std::pair<std::size_t, std::size_t>> segments;
   for (std::size_t i = 0; i < front.size(); ++i)
-    if (i == 0 || front[i]->solver != front[i - 1]->solver) segments.push_back({i, i});
-    else segments.back().second = i;
+    if (i == 0 || front[i]->solver != front[i - 1]->solver)
+      segments.push_back({i, i});
+    else
+      segments.back().second = i;
   if (segments.size() == 1) return s + ". No crossover: " + front[0]->solver + " is faster at every error reached.";
   s += ". The faster solver by the error asked for: ";
   for (std::size_t k = 0; k < segments.size(); ++k) {
     const SweepRun* a = front[segments[k].first];
     const SweepRun* b = front[segments[k].second];
     s += (k ? "; " : "") + a->solver + " " +
-         (a == b ? "at " + fmt(a->avg_density_error, 3) + " %" : "from " + fmt(a->avg_density_error, 3) + " % down to " + fmt(b->avg_density_error, 3) + " %");
+         (a == b ? "at " + fmt(a->avg_density_error, 3) + " %"
+                 : "from " + fmt(a->avg_density_error, 3) + " % down to " + fmt(b->avg_density_error, 3) + " %");
   }
   return s + ". Crossovers lie between neighbouring segments.";
 }
@@ -52,7 +55,8 @@ void speed_error(Context& c) {
     std::vector<std::string> own;
   };
   const double duration = c.quick ? 0.05 : 0.5;
-  std::vector<Case> cases = {{"dam_break_20k", "dam_break.json", {}}, {"column_1m", "column.json", {}},
+  std::vector<Case> cases = {{"dam_break_20k", "dam_break.json", {}},
+                             {"column_1m", "column.json", {}},
                              {"column_2m", "column.json", column_height(0.5, 2.0)}};
   if (c.quick) cases = {{"dam_break", "dam_break.json", {}}};
   const std::vector<std::vector<std::string>> iisph =
@@ -63,10 +67,14 @@ void speed_error(Context& c) {
       c.quick ? std::vector<std::vector<std::string>>{{"solver.stiffness=1e6", "time.dt=1e-4"}}
               : analysis::sweep_combinations({analysis::parse_sweep("solver.stiffness=1e5,1e6,1e7"),
                                               analysis::parse_sweep("time.dt=5e-5,1e-4,2e-4")});
-  c.md += "Each scene runs " + fmt(duration, 3) +
-          " simulated seconds per combination: IISPH over dt x tolerance, WCSPH over stiffness x dt. Time is wall seconds "
-          "per simulated second (" + std::to_string(omp_get_max_threads()) + " threads), error is the average of Eq. 15's "
-          "density error over the steps. Load average at the start " + fmt(load_average(), 3) + ".\n\n";
+  c.md +=
+      "Each scene runs " + fmt(duration, 3) +
+      " simulated seconds per combination: IISPH over dt x tolerance, WCSPH over stiffness x dt. Time is wall seconds "
+      "per simulated second (" +
+      std::to_string(omp_get_max_threads()) +
+      " threads), error is the average of Eq. 15's "
+      "density error over the steps. Load average at the start " +
+      fmt(load_average(), 3) + ".\n\n";
   for (const Case& k : cases) {
     std::vector<SweepRun> runs;
     for (const auto* grid : {&iisph, &wc})
