@@ -27,9 +27,9 @@ using test::read_text;
 using test::run_sluice;
 using test::write_text;
 
-analysis::CsvTable table_of(const CaseDir& dir, const std::string& name, const std::string& text) {
+io::CsvTable table_of(const CaseDir& dir, const std::string& name, const std::string& text) {
   write_text(dir.work() / name, text);
-  return analysis::read_csv_table((dir.work() / name).string());
+  return io::read_csv_table((dir.work() / name).string());
 }
 
 TEST(Figures, BoxStatsQuartilesWhiskersAndMean) {
@@ -157,19 +157,19 @@ TEST(Figures, BadInputNamesTheFileTheColumnAndWhatIsAllowed) {
   try {
     analysis::figure_series(s, {t});
     FAIL() << "a missing column must throw";
-  } catch (const analysis::InputError& e) {
+  } catch (const io::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("no column 'iterationz' (it has: time, iterations)"), std::string::npos)
         << e.what();
   }
   s.y = {"iterations"};
   s.where = {"time=9"};
-  EXPECT_THROW(analysis::figure_series(s, {t}), analysis::InputError);  // no rows match
-  EXPECT_THROW(analysis::figure_format("a.jpg"), analysis::InputError);
+  EXPECT_THROW(analysis::figure_series(s, {t}), io::InputError);  // no rows match
+  EXPECT_THROW(analysis::figure_format("a.jpg"), io::InputError);
   write_text(dir.work() / "ragged.csv", "a,b\n1,2\n3\n");
   try {
-    analysis::read_csv_table((dir.work() / "ragged.csv").string());
+    io::read_csv_table((dir.work() / "ragged.csv").string());
     FAIL() << "a short row must throw";
-  } catch (const analysis::InputError& e) {
+  } catch (const io::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("line 3: 1 fields, the header has 2"), std::string::npos) << e.what();
   }
 }
@@ -224,15 +224,13 @@ std::vector<std::string> experiment_args(const std::vector<std::string>& names) 
   return a;
 }
 
-double value(const analysis::CsvTable& t, std::size_t row, const std::string& column) {
-  return t.numbers(column).at(row);
-}
+double value(const io::CsvTable& t, std::size_t row, const std::string& column) { return t.numbers(column).at(row); }
 
 TEST(Experiments, FixedIterationsErrorFallsWithIterations) {
   const CaseDir dir;
   const auto r = run_sluice(dir, experiment_args({"fixed-iterations"}));
   ASSERT_EQ(r.status, 0) << r.err;
-  const auto t = analysis::read_csv_table((dir.work() / "out/fixed-iterations/fixed_iterations.csv").string());
+  const auto t = io::read_csv_table((dir.work() / "out/fixed-iterations/fixed_iterations.csv").string());
   ASSERT_EQ(t.rows.size(), 2u);  // 2 and 8 iterations
   EXPECT_EQ(value(t, 0, "stable"), 1);
   EXPECT_EQ(value(t, 1, "stable"), 1);
@@ -245,10 +243,10 @@ TEST(Experiments, IterationsGrowWithTimeStepAndColumnHeight) {
   const CaseDir dir;
   const auto r = run_sluice(dir, experiment_args({"iisph-dt", "column-height"}));
   ASSERT_EQ(r.status, 0) << r.err;
-  const auto dt = analysis::read_csv_table((dir.work() / "out/iisph-dt/iisph_dt.csv").string());
+  const auto dt = io::read_csv_table((dir.work() / "out/iisph-dt/iisph_dt.csv").string());
   ASSERT_EQ(dt.rows.size(), 2u);
   EXPECT_GT(value(dt, 1, "avg_iterations"), value(dt, 0, "avg_iterations"));  // Figure 6a
-  const auto h = analysis::read_csv_table((dir.work() / "out/column-height/column_height.csv").string());
+  const auto h = io::read_csv_table((dir.work() / "out/column-height/column_height.csv").string());
   ASSERT_EQ(h.rows.size(), 2u);
   EXPECT_GT(value(h, 1, "particles"), value(h, 0, "particles"));
   EXPECT_GT(value(h, 1, "avg_iterations"), value(h, 0, "avg_iterations"));  // Figure 6b
@@ -259,12 +257,12 @@ TEST(Experiments, BoundaryIterationsUseTheGammaSearchsBest) {
   const CaseDir dir;
   const auto r = run_sluice(dir, experiment_args({"boundary-gamma", "boundary-iterations"}));
   ASSERT_EQ(r.status, 0) << r.err;
-  const auto best = analysis::read_csv_table((dir.work() / "out/boundary-gamma/best.csv").string());
+  const auto best = io::read_csv_table((dir.work() / "out/boundary-gamma/best.csv").string());
   EXPECT_EQ(best.rows.size(), 3u);
-  const auto means = analysis::read_csv_table((dir.work() / "out/boundary-iterations/means.csv").string());
+  const auto means = io::read_csv_table((dir.work() / "out/boundary-iterations/means.csv").string());
   ASSERT_EQ(means.rows.size(), 3u);
   for (const auto& row : means.rows) EXPECT_NE(row[static_cast<std::size_t>(means.column("gammas"))], "scene");
-  const auto steps = analysis::read_csv_table((dir.work() / "out/boundary-iterations/iterations.csv").string());
+  const auto steps = io::read_csv_table((dir.work() / "out/boundary-iterations/iterations.csv").string());
   EXPECT_GT(steps.rows.size(), 30u);
   EXPECT_TRUE(fs::exists(dir.work() / "out/boundary-iterations/iterations_by_method.png"));
   EXPECT_TRUE(fs::exists(dir.work() / "out/boundary-gamma/gamma_zero.png"));
@@ -274,12 +272,12 @@ TEST(Experiments, NeighbourSearchAndSpeedErrorWriteTheirTables) {
   const CaseDir dir;
   const auto r = run_sluice(dir, experiment_args({"neighbour-search", "speed-error"}));
   ASSERT_EQ(r.status, 0) << r.err;
-  const auto ns = analysis::read_csv_table((dir.work() / "out/neighbour-search/neighbour_search.csv").string());
+  const auto ns = io::read_csv_table((dir.work() / "out/neighbour-search/neighbour_search.csv").string());
   ASSERT_EQ(ns.rows.size(), 4u);
   EXPECT_EQ(ns.rows[0][1], "naive");
   EXPECT_EQ(ns.rows[1][1], "hashing");
   EXPECT_EQ(ns.rows[0][0], ns.rows[1][0]);  // the same scene for both searches
-  const auto se = analysis::read_csv_table((dir.work() / "out/speed-error/dam_break.csv").string());
+  const auto se = io::read_csv_table((dir.work() / "out/speed-error/dam_break.csv").string());
   ASSERT_EQ(se.rows.size(), 2u);
   EXPECT_EQ(se.rows[0][2], "iisph");
   EXPECT_EQ(se.rows[1][2], "wcsph");
@@ -290,7 +288,7 @@ TEST(Experiments, ScalingRunsEachWidthAtTheToleranceAndWithFixedIterations) {
   const CaseDir dir;
   const auto r = run_sluice(dir, experiment_args({"scaling"}));
   ASSERT_EQ(r.status, 0) << r.err;
-  const auto t = analysis::read_csv_table((dir.work() / "out/scaling/scaling.csv").string());
+  const auto t = io::read_csv_table((dir.work() / "out/scaling/scaling.csv").string());
   ASSERT_EQ(t.rows.size(), 2u);
   const auto col = [&](const std::string& name) { return static_cast<size_t>(t.column(name)); };
   EXPECT_LT(std::stol(t.rows[0][col("particles")]), std::stol(t.rows[1][col("particles")]));
@@ -306,7 +304,7 @@ TEST(Experiments, ParallelTimesTheSolverAndTheMachinesLoopsForEachThreadCount) {
   const CaseDir dir;
   const auto r = run_sluice(dir, experiment_args({"parallel"}));
   ASSERT_EQ(r.status, 0) << r.err;
-  const auto eff = analysis::read_csv_table((dir.work() / "out/parallel/efficiency.csv").string());
+  const auto eff = io::read_csv_table((dir.work() / "out/parallel/efficiency.csv").string());
   ASSERT_GE(eff.rows.size(), 2u);  // 1 and 2 threads (and all cores where there are more)
   EXPECT_EQ(value(eff, 0, "threads"), 1);
   // One round (--quick): the speed-up is the 1-thread time over the t-thread time, its
@@ -318,7 +316,7 @@ TEST(Experiments, ParallelTimesTheSolverAndTheMachinesLoopsForEachThreadCount) {
     EXPECT_EQ(value(eff, row, "speedup_min"), speedup);
     EXPECT_EQ(value(eff, row, "speedup_max"), speedup);
   }
-  const auto m = analysis::read_csv_table((dir.work() / "out/parallel/machine.csv").string());
+  const auto m = io::read_csv_table((dir.work() / "out/parallel/machine.csv").string());
   ASSERT_EQ(m.rows.size(), 2 * eff.rows.size());  // the memory stream and the arithmetic loop per thread count
   const auto col = [&](const std::string& name) { return static_cast<size_t>(m.column(name)); };
   EXPECT_EQ(m.rows[0][col("loop")], "memory stream");
@@ -332,7 +330,7 @@ TEST(Experiments, ParallelTimesTheSolverAndTheMachinesLoopsForEachThreadCount) {
   EXPECT_NE(read_text(dir.work() / "out/parallel/summary.md").find("The machine in the same rounds"),
             std::string::npos);
   // Figure 11's columns: a row per thread count, the speed-up of one thread against itself is 1.
-  const auto cols = analysis::read_csv_table((dir.work() / "out/parallel/column_threads.csv").string());
+  const auto cols = io::read_csv_table((dir.work() / "out/parallel/column_threads.csv").string());
   ASSERT_EQ(cols.rows.size(), eff.rows.size());  // the quick run has one column
   EXPECT_EQ(value(cols, 0, "threads"), 1);
   for (size_t row = 0; row < cols.rows.size(); ++row) {

@@ -71,7 +71,7 @@ TEST(Sweep, CsvRoundTrip) {
   EXPECT_DOUBLE_EQ(back[0].ms_phase[2], 0.125);
   EXPECT_DOUBLE_EQ(back[1].avg_density_error, 0.1);
   std::ofstream(path) << "not,a,bench,csv\n";
-  EXPECT_THROW(analysis::read_sweep_csv(path.string()), analysis::InputError);
+  EXPECT_THROW(analysis::read_sweep_csv(path.string()), io::InputError);
   std::filesystem::remove(path);
 }
 

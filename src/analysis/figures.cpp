@@ -12,6 +12,11 @@
 
 namespace sluice::analysis {
 
+using io::CsvTable;
+using io::InputError;
+using io::join;
+using io::read_csv_table;
+
 namespace fs = std::filesystem;
 
 namespace {

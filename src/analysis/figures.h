@@ -66,7 +66,7 @@ std::string axis_label(const std::string& column);
 
 // The series the spec selects from the tables (one table per input). Throws SceneError
 // naming the file and column when a column is missing or a --where is malformed.
-std::vector<FigureSeries> figure_series(const FigureSpec& spec, const std::vector<CsvTable>& tables);
+std::vector<FigureSeries> figure_series(const FigureSpec& spec, const std::vector<io::CsvTable>& tables);
 
 // The gnuplot script drawing `series` as the spec asks (pure: for tests).
 std::string figure_script(const FigureSpec& spec, const std::vector<FigureSeries>& series);
@@ -78,6 +78,6 @@ std::string make_figure(const FigureSpec& spec);
 
 // A Markdown table of the given columns (all when empty) of a CSV table; numbers are
 // printed with `digits` significant digits.
-std::string markdown_table(const CsvTable& table, const std::vector<std::string>& columns, int digits = 4);
+std::string markdown_table(const io::CsvTable& table, const std::vector<std::string>& columns, int digits = 4);
 
 }  // namespace sluice::analysis

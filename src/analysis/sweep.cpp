@@ -14,6 +14,12 @@
 
 namespace sluice::analysis {
 
+using io::csv_quote;
+using io::InputError;
+using io::join;
+using io::parse_csv_line;
+using io::split;
+
 namespace {
 
 const char* kHeader =

@@ -88,7 +88,7 @@ int run_experiment(const ExperimentOptions& o) {
     const auto it = std::find_if(experiment_list().begin(), experiment_list().end(),
                                  [&](const Experiment& e) { return n == e.name; });
     if (it == experiment_list().end())
-      throw view::FlagError("name", n, "one of: " + analysis::join(experiment_names(), ", ") + ", all, list");
+      throw view::FlagError("name", n, "one of: " + io::join(experiment_names(), ", ") + ", all, list");
     chosen.push_back(&*it);
   }
   if (!o.scene.empty() && chosen.size() > 1)

@@ -64,8 +64,8 @@ int run_standard_figures(const FiguresOptions& o) {
   for (const auto& dir : o.inputs) {
     const fs::path stats = fs::path(dir) / "stats.csv";
     if (!fs::is_regular_file(stats))
-      throw analysis::InputError(stats.string() +
-                                 ": not found; `figures run` takes run directories written by simulate or render");
+      throw io::InputError(stats.string() +
+                           ": not found; `figures run` takes run directories written by simulate or render");
     base.inputs.push_back(stats.string());
   }
   const fs::path out = o.output.empty() ? fs::path(o.inputs[0]) / "figures" : fs::path(o.output);
@@ -112,7 +112,7 @@ int run_figures(const FiguresOptions& o) {
   if (o.kind == "table") {
     std::string md;
     for (const auto& in : o.inputs) {
-      const auto t = analysis::read_csv_table(in);
+      const auto t = io::read_csv_table(in);
       if (o.inputs.size() > 1) md += "**" + in + "**\n\n";
       md += analysis::markdown_table(t, o.columns) + (o.inputs.size() > 1 ? "\n" : "");
     }

@@ -7,7 +7,7 @@
 
 #include "io/output.h"
 
-namespace sluice::analysis {
+namespace sluice::io {
 
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> out;
@@ -103,4 +103,4 @@ CsvTable read_csv_table(const std::string& path) {
   return t;
 }
 
-}  // namespace sluice::analysis
+}  // namespace sluice::io

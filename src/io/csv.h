@@ -1,13 +1,12 @@
 #pragma once
 // Comma-separated values as sluice writes and reads them: a header row, then one row per
-// record; fields holding commas, quotes or semicolons are quoted ("" for a quote). The
-// namespace stays sluice::analysis, where the figures and sweeps that read CSV grew it.
+// record; fields holding commas, quotes or semicolons are quoted ("" for a quote).
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
-namespace sluice::analysis {
+namespace sluice::io {
 
 // A CSV input that cannot be read or lacks what was asked of it (a missing file or
 // column, a ragged row), or a figure request that does not fit its data. Not a scene's
@@ -58,4 +57,4 @@ class CsvWriter {
 // a row whose field count differs from the header's).
 CsvTable read_csv_table(const std::string& path);
 
-}  // namespace sluice::analysis
+}  // namespace sluice::io

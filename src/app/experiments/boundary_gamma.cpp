@@ -22,9 +22,9 @@ double halton(int i, int b) {
 
 void boundary_gamma(Context& c) {
   const int samples = c.quick ? 2 : 6;
-  analysis::CsvWriter csv(
+  io::CsvWriter csv(
       "method,gamma1,gamma2,gamma3,stable,avg_iterations,avg_density_error_percent,s_per_simulated_s,best");
-  analysis::CsvWriter best_csv("method,gamma1,gamma2,gamma3,avg_iterations,avg_density_error_percent");
+  io::CsvWriter best_csv("method,gamma1,gamma2,gamma3,avg_iterations,avg_density_error_percent");
   c.md +=
       "For each boundary method, the scene's gammas (0.84, 1, 1) and " + std::to_string(samples) +
       " Halton samples of gamma1 in [0.7, 1.1], gamma2 in [0.7, 1.3], gamma3 in [0.7, 1.5] on the breaking dam "

@@ -12,15 +12,15 @@ void boundary_iterations(Context& c) {
   std::map<std::string, std::vector<std::string>> gammas;
   const fs::path best = c.root / "boundary-gamma" / "best.csv";
   if (fs::exists(best)) {
-    const auto t = analysis::read_csv_table(best.string());
+    const auto t = io::read_csv_table(best.string());
     for (const auto& row : t.rows)
       gammas[row[static_cast<std::size_t>(t.column("method"))]] = {
           "solver.gamma1=" + row[static_cast<std::size_t>(t.column("gamma1"))],
           "solver.gamma2=" + row[static_cast<std::size_t>(t.column("gamma2"))],
           "solver.gamma3=" + row[static_cast<std::size_t>(t.column("gamma3"))]};
   }
-  analysis::CsvWriter steps("method,time,iterations,density_error_percent");
-  analysis::CsvWriter means("method,gammas,stable,steps,avg_iterations,avg_density_error_percent");
+  io::CsvWriter steps("method,time,iterations,density_error_percent");
+  io::CsvWriter means("method,gammas,stable,steps,avg_iterations,avg_density_error_percent");
   for (const char* method : kMethods) {
     auto own = boundary_scene(c, 2.0);
     own.push_back(std::string("solver.boundary_pressure=") + method);
@@ -30,8 +30,8 @@ void boundary_iterations(Context& c) {
       steps.row({method, fmt(st.time), std::to_string(st.iterations), fmt(st.density_error_percent, 5)});
     });
     print_run(method, r);
-    means.row({method, g == gammas.end() ? "scene" : analysis::csv_quote(analysis::join(g->second, " ")),
-               r.stable ? "1" : "0", std::to_string(r.steps), fmt(r.avg_iterations, 4), fmt(r.avg_density_error, 4)});
+    means.row({method, g == gammas.end() ? "scene" : io::csv_quote(io::join(g->second, " ")), r.stable ? "1" : "0",
+               std::to_string(r.steps), fmt(r.avg_iterations, 4), fmt(r.avg_density_error, 4)});
   }
   steps.write(c.dir / "iterations.csv");
   means.write(c.dir / "means.csv");

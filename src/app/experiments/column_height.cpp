@@ -10,7 +10,7 @@ void column_height_experiment(Context& c) {
   const std::vector<double> heights =
       c.quick ? std::vector<double>{0.25, 0.5} : std::vector<double>{0.25, 0.5, 1, 1.5, 2};
   const double duration = c.quick ? 0.1 : 1.0;
-  analysis::CsvWriter csv("height,particles,stable,steps,avg_iterations,avg_density_error_percent,s_per_simulated_s");
+  io::CsvWriter csv("height,particles,stable,steps,avg_iterations,avg_density_error_percent,s_per_simulated_s");
   for (double h : heights) {
     auto own = column_height(0.5, h);
     own.push_back("time.dt=1e-3");

@@ -37,7 +37,7 @@ void Context::figure(FigureSpec spec, const std::string& caption) {
 }
 
 void Context::table(const fs::path& csv, const std::vector<std::string>& columns) {
-  md += analysis::markdown_table(analysis::read_csv_table(csv.string()), columns) + "\n";
+  md += analysis::markdown_table(io::read_csv_table(csv.string()), columns) + "\n";
 }
 
 FigureSpec spec(FigureKind kind, const fs::path& csv, const std::string& x, std::vector<std::string> y,

@@ -9,7 +9,7 @@ namespace sluice::app::experiments {
 void fixed_iterations(Context& c) {
   const std::vector<int> counts = c.quick ? std::vector<int>{2, 8} : std::vector<int>{1, 2, 3, 4, 6, 8, 12, 16, 24, 32};
   const double duration = c.quick ? 0.1 : 0.5;
-  analysis::CsvWriter csv(
+  io::CsvWriter csv(
       "iterations,stable,steps,avg_density_error_percent,max_density_error_percent,avg_predicted_error_percent,"
       "message");
   for (int n : counts) {
@@ -22,7 +22,7 @@ void fixed_iterations(Context& c) {
     print_run(std::to_string(n) + " iterations", r);
     csv.row({std::to_string(n), r.stable ? "1" : "0", std::to_string(r.steps), fmt(r.avg_density_error, 4),
              fmt(r.max_density_error, 4), fmt(r.steps > 0 ? predicted / static_cast<double>(r.steps) : 0, 4),
-             analysis::csv_quote(r.message)});
+             io::csv_quote(r.message)});
   }
   csv.write(c.dir / "fixed_iterations.csv");
   c.md +=

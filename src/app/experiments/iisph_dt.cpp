@@ -11,7 +11,7 @@ void iisph_dt(Context& c) {
       c.quick ? std::vector<double>{1e-3, 2e-3} : std::vector<double>{2.5e-4, 5e-4, 7.5e-4, 1e-3, 1.5e-3, 2e-3};
   // 100 frames at 30 fps, as the thesis' Table 2.
   const double duration = c.quick ? 0.1 : 100.0 / 30.0;
-  analysis::CsvWriter csv(
+  io::CsvWriter csv(
       "dt,stable,particles,steps,avg_iterations,avg_density_error_percent,max_density_error_percent,pressure_s,"
       "neighbors_s,overall_s,s_per_simulated_s,best");
   std::vector<SweepRun> runs;

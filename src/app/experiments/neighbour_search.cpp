@@ -10,7 +10,7 @@ void neighbour_search(Context& c) {
   const std::vector<long> counts =
       c.quick ? std::vector<long>{200, 400} : std::vector<long>{500, 1000, 2000, 4000, 8000, 12000};
   const double start_load = load_average();
-  analysis::CsvWriter csv("particles,method,ms_neighbors");
+  io::CsvWriter csv("particles,method,ms_neighbors");
   for (long n : counts) {
     // 50 particles per row at h = 0.01 in a 0.5 m wide column.
     auto own = column_height(0.5, static_cast<double>(n) / 50.0 * 0.01);

@@ -57,7 +57,7 @@ void parallel(Context& c) {
       }
       for (std::size_t t = 0; t < threads.size(); ++t) col.ms[t].push_back(mean(sum[t]));
     }
-  analysis::CsvWriter csv("particles,height,threads,avg_iterations,ms_per_step,s_per_simulated_s,speedup");
+  io::CsvWriter csv("particles,height,threads,avg_iterations,ms_per_step,s_per_simulated_s,speedup");
   for (const Column& col : columns)
     for (std::size_t t = 0; t < threads.size(); ++t) {
       const SweepRun& r = col.r[t];
@@ -82,8 +82,8 @@ void parallel(Context& c) {
   // Each round also times the machine's reference loops (analysis/machine.h) with the same
   // thread counts, so that the solver's speed-up can be read against what the machine
   // gives a memory-bound and an arithmetic loop in the same spell of load.
-  analysis::CsvWriter eff("scene,particles,threads,ms_per_step,speedup,efficiency,speedup_min,speedup_max");
-  analysis::CsvWriter machine("loop,threads,ms,speedup,speedup_min,speedup_max,gb_per_s");
+  io::CsvWriter eff("scene,particles,threads,ms_per_step,speedup,efficiency,speedup_min,speedup_max");
+  io::CsvWriter machine("loop,threads,ms,speedup,speedup_min,speedup_max,gb_per_s");
   std::string eff_text, machine_text;
   SweepRun r;
   const int rounds = c.quick ? 1 : 9;  // the ratio of one round varies by ±20 % on a shared 2-core VM

@@ -20,7 +20,7 @@ void scaling(Context& c) {
       c.quick ? std::vector<long>{2000, 8000} : std::vector<long>{10000, 30000, 100000, 300000, 1000000};
   constexpr int kFixedIterations = 6;
   const double start_load = load_average();
-  analysis::CsvWriter csv(
+  io::CsvWriter csv(
       "particles,width,steps,avg_iterations,ms_per_step,us_per_particle_step,ratio_to_first,us_neighbors_per_particle,"
       "us_pressure_per_particle_iteration,fixed_iterations,us_per_particle_step_fixed_iterations,ratio_to_first_fixed_"
       "iterations");

@@ -85,7 +85,7 @@ void speed_error(Context& c) {
         own.insert(own.end(), combo.begin(), combo.end());
         runs.push_back(analysis::run_sweep_point(c.load(k.base, own), combo));
         runs.back().scene = k.label;
-        print_run(k.label + " " + analysis::join(combo, " "), runs.back());
+        print_run(k.label + " " + io::join(combo, " "), runs.back());
       }
     analysis::mark_pareto_front(runs);
     const fs::path csv = c.dir / (k.label + ".csv");

@@ -9,8 +9,8 @@ namespace sluice::app::experiments {
 void wcsph(Context& c) {
   const std::vector<double> ks = c.quick ? std::vector<double>{1e5, 1e6} : std::vector<double>{1e5, 3e5, 1e6, 3e6, 1e7};
   const double duration = c.quick ? 0.05 : 1.0;
-  analysis::CsvWriter series("stiffness,time,density_error_percent");
-  analysis::CsvWriter by_k(
+  io::CsvWriter series("stiffness,time,density_error_percent");
+  io::CsvWriter by_k(
       "stiffness,stable,steps,avg_density_error_percent,max_density_error_percent,s_per_simulated_s,message");
   for (double k : ks) {
     Scene scene;
@@ -19,7 +19,7 @@ void wcsph(Context& c) {
                                      number_override("time.duration", duration)});
     } catch (const SceneError& e) {  // a step beyond WCSPH's acoustic limit is refused at load
       std::printf("  k = %s: refused: %s\n", fmt(k).c_str(), e.what());
-      by_k.row({fmt(k), "0", "0", "", "", "", analysis::csv_quote(std::string("refused: ") + e.what())});
+      by_k.row({fmt(k), "0", "0", "", "", "", io::csv_quote(std::string("refused: ") + e.what())});
       continue;
     }
     long n = 0;
@@ -30,7 +30,7 @@ void wcsph(Context& c) {
     });
     print_run("k = " + fmt(k), r);
     by_k.row({fmt(k), r.stable ? "1" : "0", std::to_string(r.steps), fmt(r.avg_density_error, 4),
-              fmt(r.max_density_error, 4), fmt(r.seconds_per_simulated_second(), 4), analysis::csv_quote(r.message)});
+              fmt(r.max_density_error, 4), fmt(r.seconds_per_simulated_second(), 4), io::csv_quote(r.message)});
   }
   series.write(c.dir / "error_over_time.csv");
   by_k.write(c.dir / "stiffness.csv");
@@ -39,7 +39,7 @@ void wcsph(Context& c) {
       c.quick ? std::vector<double>{1e-4, 2e-4} : std::vector<double>{2.5e-5, 5e-5, 1e-4, 2e-4, 4e-4};
   const double k = 1e6;
   const double dt_duration = c.quick ? 0.05 : 0.5;
-  analysis::CsvWriter by_dt(
+  io::CsvWriter by_dt(
       "dt,stable,steps,avg_density_error_percent,pressure_s,neighbors_s,overall_s,s_per_simulated_s,message");
   for (double dt : dts) {
     Scene scene;
@@ -48,7 +48,7 @@ void wcsph(Context& c) {
                                      number_override("time.dt", dt), number_override("time.duration", dt_duration)});
     } catch (const SceneError& e) {
       std::printf("  k = 1e6, dt = %s: refused: %s\n", fmt(dt).c_str(), e.what());
-      by_dt.row({fmt(dt), "0", "0", "", "", "", "", "", analysis::csv_quote(std::string("refused: ") + e.what())});
+      by_dt.row({fmt(dt), "0", "0", "", "", "", "", "", io::csv_quote(std::string("refused: ") + e.what())});
       continue;
     }
     const SweepRun r = analysis::run_sweep_point(scene, {});
@@ -56,7 +56,7 @@ void wcsph(Context& c) {
     const double n = static_cast<double>(r.steps) / 1000.0;
     by_dt.row({fmt(dt), r.stable ? "1" : "0", std::to_string(r.steps), fmt(r.avg_density_error, 4),
                fmt(r.ms_phase[2] * n, 4), fmt(r.ms_phase[0] * n, 4), fmt(r.ms_phase[4] * n, 4),
-               fmt(r.seconds_per_simulated_second(), 4), analysis::csv_quote(r.message)});
+               fmt(r.seconds_per_simulated_second(), 4), io::csv_quote(r.message)});
   }
   by_dt.write(c.dir / "time_step.csv");
   c.md += "WCSPH on the 5000-particle column, " + fmt(duration, 3) + " simulated seconds per stiffness run and " +

@@ -1,0 +1,125 @@
+#include "solver/simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/check.h"
+#include "solver/internal.h"
+
+// Construction: the fluid and boundary arrays from a SimulationSetup, the boundary
+// volumes of 4.1, the particle mass and the sound speed; then the optional settling.
+namespace sluice {
+
+using namespace solver_detail;
+
+namespace {
+
+// IISPH has no sound speed; its artificial viscosity takes Monaghan's (1994) choice for a
+// weakly compressible fluid, c = 10 v_max, with v_max = sqrt(2 g H) of the fluid's
+// initial height H (or its fastest initial particle, if faster).
+double incompressible_sound_speed(const SimulationSetup& setup) {
+  const Vec2 g = setup.solver.gravity;
+  double vmax = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const Vec2& v : setup.fluid_v) vmax = std::max(vmax, v.norm());
+  if (g.norm() > 0) {
+    const Vec2 up = -g.normalized();
+    for (const Vec2& x : setup.fluid_x) {
+      lo = std::min(lo, x.dot(up));
+      hi = std::max(hi, x.dot(up));
+    }
+    if (hi >= lo) vmax = std::max(vmax, std::sqrt(2.0 * g.norm() * (hi - lo + setup.spacing)));
+  }
+  return 10.0 * vmax;
+}
+
+}  // namespace
+
+// sum_j W(x_ij) over a square lattice of spacing h (self included): 1.000862 / h^2 for
+// the cubic spline. The fluid mass is rho0 / this sum, so that a filled lattice is at
+// rest density exactly; with m = rho0 h^2 every particle of the initial block would be
+// 0.086% compressed and IISPH would push the whole block apart in its first step.
+double lattice_kernel_sum(const CubicSpline2D& kernel) {
+  double sum = 0.0;
+  for (int i = -2; i <= 2; ++i)
+    for (int j = -2; j <= 2; ++j) sum += kernel.W(kernel.h() * std::sqrt(double(i * i + j * j)));
+  return sum;
+}
+
+Simulation::~Simulation() = default;
+Simulation::Simulation(Simulation&&) noexcept = default;
+Simulation& Simulation::operator=(Simulation&&) noexcept = default;
+
+Simulation::Simulation(const SimulationSetup& setup)
+    : setup_(setup),
+      settings_(setup.solver),
+      kernel_(setup.spacing),
+      mass_(setup.solver.rest_density / lattice_kernel_sum(kernel_)),
+      scratch_(std::make_unique<SolverScratch>()) {
+  SLUICE_ASSERT(setup.spacing > 0, "the setup's spacing is positive (the scene checks it)");
+  SLUICE_ASSERT(setup.boundary_object.empty() || setup.boundary_object.size() == setup.boundary_x.size(),
+                "one object index per boundary sample");
+  for (const BoundaryObject& obj : setup.objects)
+    SLUICE_ASSERT(
+        obj.first >= 0 && obj.count >= 0 && obj.first + obj.count <= static_cast<Index>(setup.boundary_x.size()),
+        "an object's samples lie within boundary_x");
+  const Index n = static_cast<Index>(setup.fluid_x.size());
+  fluid_.resize(n);
+  for (Index i = 0; i < n; ++i) {
+    fluid_.x[i] = setup.fluid_x[i];
+    fluid_.v[i] = i < static_cast<Index>(setup.fluid_v.size()) ? setup.fluid_v[i] : Vec2::Zero();
+    fluid_.rho[i] = settings_.rest_density;
+    fluid_.p[i] = 0.0;
+    fluid_.id[i] = i;
+  }
+
+  // Boundary particles in spatial order, once. Moving ones keep their rest position x0
+  // and get their pose from the script every step.
+  const std::vector<Index> order = spatial_order(setup.boundary_x, kernel_.support());
+  const Index nb = static_cast<Index>(order.size());
+  boundary_.x.resize(nb);
+  boundary_.object.resize(nb);
+  boundary_.moving.assign(nb, 0);
+  for (Index k = 0; k < nb; ++k) {
+    boundary_.x[k] = setup.boundary_x[order[k]];
+    boundary_.object[k] = setup.boundary_object.empty() ? 0 : setup.boundary_object[order[k]];
+    if (boundary_.object[k] < static_cast<Index>(setup.objects.size()) && setup.objects[boundary_.object[k]].moving) {
+      boundary_.moving[k] = 1;
+      moving_.push_back(k);
+    }
+  }
+  boundary_.x0 = boundary_.x;
+  boundary_.v.assign(nb, Vec2::Zero());
+  boundary_.a.assign(nb, Vec2::Zero());
+  boundary_.p.assign(nb, 0.0);
+  boundary_.volume.assign(nb, 0.0);
+  near_moving_.assign(nb, 0);
+  if (has_moving_boundaries()) {
+    move_boundaries(0.0);  // the pose at t = 0 (a script may start displaced), grid, volumes
+    volume_update_.resize(static_cast<size_t>(nb));
+    for (Index b = 0; b < nb; ++b) volume_update_[b] = b;
+    compute_volumes(boundary_grid_, volume_update_, boundary_.volume);
+  } else {
+    // Walls at rest: a grid with many cells per point (built once) and volumes once.
+    boundary_grid_.build(boundary_.x, kernel_.support(), /*cells_per_point=*/1024.0);
+    std::vector<Index> all(static_cast<size_t>(nb));
+    for (Index b = 0; b < nb; ++b) all[b] = b;
+    compute_volumes(boundary_grid_, all, boundary_.volume);
+  }
+
+  const Vec2 size = (setup.bounds_max - setup.bounds_min).cwiseMax(Vec2::Constant(setup.spacing));
+  const double margin = setup.limits.bounds_margin * size.maxCoeff();
+  lost_min_ = setup.bounds_min - Vec2::Constant(margin);
+  lost_max_ = setup.bounds_max + Vec2::Constant(margin);
+
+  last_frame_ = static_cast<Index>(std::ceil(setup.time.duration * setup.time.fps - 1e-9));
+  wcsph_speed_ = std::sqrt(settings_.stiffness / settings_.rest_density);
+  sound_speed_ = settings_.sound_speed;
+  if (sound_speed_ <= 0)
+    sound_speed_ = settings_.type == SolverType::WCSPH ? wcsph_speed_ : incompressible_sound_speed(setup);
+  reorder_fluid();
+  recompute_density();
+  if (setup.time.settle > 0) settle();
+}
+
+}  // namespace sluice
