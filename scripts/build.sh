@@ -2,5 +2,5 @@
 # Configures and builds sluice (Release) into build/. Extra arguments go to cmake.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "$@"
-cmake --build build -j"$(nproc)"
+cmake --preset release "$@"
+cmake --build --preset release -j"$(nproc)"

@@ -6,4 +6,4 @@ cd "$(dirname "$0")/.."
 ./scripts/build.sh
 # One test process at a time: each already uses every core through OpenMP, and two
 # OpenMP processes sharing the cores busy-wait at each other's barriers (6 s -> 40-200 s).
-ctest --test-dir build --output-on-failure
+ctest --preset release
