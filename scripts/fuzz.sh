@@ -34,7 +34,7 @@ fi
 
 sources=(fuzz/scene_fuzzer.cpp src/scene/build.cpp src/scene/json_reader.cpp src/scene/overrides.cpp
          src/scene/read_settings.cpp src/scene/read_shapes.cpp src/scene/read_motion.cpp src/scene/sample_file.cpp
-         src/core/shapes.cpp src/solver/motion.cpp src/solver/settings.cpp)
+         src/core/shapes.cpp src/solver/motion.cpp src/solver/settings.cpp src/solver/setup.cpp)
 mkdir -p "$out/corpus" "$out/artifacts"
 # Rebuild only when a source or header changed since the last build.
 if [ ! -x "$out/scene_fuzzer" ] || [ -n "$(find src fuzz -newer "$out/scene_fuzzer" -type f | head -1)" ]; then

@@ -382,12 +382,12 @@ TEST(SceneErrors, ValueErrorsNameLineAndColumn) {
 TEST(SceneOverrides, ChangeValues) {
   const std::string text = scene_with("");
   const Scene s = parse_scene(text, kFile,
-                              {"solver.tolerance=0.05", "/solver/type=wcsph", "fluid.0.max=[2,1]", "time.dt=1e-3",
+                              {"solver.tolerance=0.05", "/solver/type=wcsph", "fluid.0.max=[2,1]", "time.dt=5e-4",
                                "output.export=[\"vtk\"]", "name=\"renamed\""});
   EXPECT_EQ(s.solver.tolerance_percent, 0.05);
   EXPECT_EQ(s.solver.type, SolverType::WCSPH);
   EXPECT_EQ(s.fluid_x.size(), 200u);
-  EXPECT_EQ(s.time.dt, 1e-3);
+  EXPECT_EQ(s.time.dt, 5e-4);
   EXPECT_EQ(s.output.export_formats, std::vector<std::string>{"vtk"});
   EXPECT_EQ(s.name, "renamed");
   EXPECT_EQ(s.resolved["solver"]["tolerance"], 0.05);
@@ -399,6 +399,47 @@ TEST(SceneOverrides, ChangeValues) {
   // The index equal to an array's size appends.
   const Scene b = parse_scene(text, kFile, {R"(fluid.1={"shape": "rectangle", "min": [2, 0], "max": [3, 1]})"});
   EXPECT_EQ(b.fluid_x.size(), 200u);
+}
+
+// WCSPH's default stiffness k = rho0 (20 v)^2, v = max(sqrt(g H), fastest initial speed):
+// the 1 m block of spacing 0.1 is H = 1 m high (its rows' extent plus a spacing).
+TEST(SceneSettings, WcsphStiffnessDefaultsFromTheFluid) {
+  const double c_gravity = 20 * std::sqrt(9.81 * 1.0);
+  const Scene s = parse_scene(scene_with(R"("solver": {"type": "wcsph"},)"), kFile);
+  EXPECT_NEAR(s.solver.stiffness, 1000 * c_gravity * c_gravity, 1e-6 * s.solver.stiffness);
+  EXPECT_EQ(s.resolved["solver"]["stiffness"], s.solver.stiffness);
+  // An initial velocity faster than sqrt(g H) sets it; a given stiffness (or null) wins.
+  const std::string fast = R"([{"shape": "rectangle", "min": [0, 0], "max": [1, 1], "velocity": [0, -5]}])";
+  EXPECT_NEAR(parse_scene(scene_with(R"("solver": {"type": "wcsph"},)", fast), kFile).solver.stiffness,
+              1000 * 100.0 * 100.0, 1e-3);
+  EXPECT_EQ(parse_scene(scene_with(R"("solver": {"type": "wcsph", "stiffness": 5e5},)"), kFile).solver.stiffness, 5e5);
+  EXPECT_EQ(
+      parse_scene(scene_with(R"("solver": {"type": "wcsph", "stiffness": 5e5},)"), kFile, {"solver.stiffness=null"})
+          .solver.stiffness,
+      s.solver.stiffness);
+  // Neither gravity nor motion: WCSPH needs the key, IISPH does not.
+  const std::string still = R"("solver": {"type": "wcsph", "gravity": [0, 0]},)";
+  const std::string msg = error_of(scene_with(still));
+  EXPECT_NE(msg.find("/solver/stiffness: missing: WCSPH's default stiffness"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("set solver.stiffness"), std::string::npos) << msg;
+  EXPECT_EQ(error_of(scene_with(still), {"solver.stiffness=1e6"}), "(no error)");
+  const Scene iisph = parse_scene(scene_with(R"("solver": {"gravity": [0, 0]},)"), kFile);
+  EXPECT_EQ(iisph.solver.stiffness, 0.0);
+  EXPECT_TRUE(iisph.resolved["solver"]["stiffness"].is_null());
+}
+
+// A fixed WCSPH step above 0.4 h / c is refused, naming the limit and the stiffness.
+TEST(SceneSettings, WcsphStepAboveTheAcousticLimitIsRefused) {
+  // k = 1e6: c = 31.62 m/s, limit 0.4 * 0.1 / c = 1.265e-3 s.
+  const std::string wcsph = R"("solver": {"type": "wcsph", "stiffness": 1e6},)";
+  EXPECT_EQ(error_of(scene_with(wcsph + R"("time": {"dt": 1.2e-3},)")), "(no error)");
+  const std::string msg = error_of(scene_with(wcsph + R"("time": {"dt": 1.3e-3},)"));
+  EXPECT_NE(msg.find("/time/dt: WCSPH step 0.0013 s exceeds the acoustic limit 0.4 h / c = 0.00126491"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("with stiffness 1000000 Pa*m, h = 0.1 m"), std::string::npos) << msg;
+  const std::string own = error_of(scene_with(R"("solver": {"type": "wcsph"}, "time": {"dt": 1e-3},)"));
+  EXPECT_NE(own.find("Pa*m, the scene's default, h = 0.1 m"), std::string::npos) << own;
 }
 
 TEST(SceneOverrides, Errors) {

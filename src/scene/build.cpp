@@ -114,16 +114,6 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
     scene.time = read_time(r, ctx);
     resolved["time"] = r.resolved();
   }
-  // WCSPH's fixed step must resolve its sound waves (Monaghan 1992): dt <= 0.4 h / c.
-  if (scene.solver.type == SolverType::WCSPH && scene.time.dt > 0) {
-    const double c = std::sqrt(scene.solver.stiffness / scene.solver.rest_density);
-    const double limit = kAcousticCfl * h / c;
-    if (scene.time.dt > limit)
-      ctx.fail("/time/dt",
-               "WCSPH step " + num(scene.time.dt) + " s exceeds the acoustic limit 0.4 h / c = " + num(limit) +
-                   " s (sound speed c = sqrt(stiffness / rest_density) = " + num(c) + " m/s, h = " + num(h) +
-                   " m); use time.dt <= " + num(limit) + " or time.dt=null for the adaptive step");
-  }
   {
     Reader r(ctx, sections[2], "/stability");
     scene.limits = read_stability(r);
@@ -213,6 +203,28 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
              "the scene has no fluid particles (" + std::to_string(lattice_points) +
                  (lattice_points ? " lattice points, all removed inside boundaries)"
                                  : " lattice points: the fluid blocks are empty or have no area at this spacing)"));
+
+  const bool default_stiffness = !(scene.solver.stiffness > 0);
+  if (default_stiffness) {
+    scene.solver.stiffness = wcsph_default_stiffness(scene);
+    if (scene.solver.stiffness > 0) scene.resolved["solver"]["stiffness"] = scene.solver.stiffness;
+  }
+  if (scene.solver.type == SolverType::WCSPH) {
+    if (!(scene.solver.stiffness > 0))
+      ctx.fail("/solver/stiffness",
+               "missing: WCSPH's default stiffness k = rest_density (20 v)^2 needs a speed v, sqrt(g H) or the "
+               "fastest initial fluid velocity, and this scene has neither gravity nor initial motion; set "
+               "solver.stiffness, e.g. 1e6 [Pa*m]");
+    // The fixed step must resolve the sound waves (Monaghan 1992): dt <= 0.4 h / c.
+    const double c = std::sqrt(scene.solver.stiffness / scene.solver.rest_density);
+    const double limit = kAcousticCfl * h / c;
+    if (scene.time.dt > 0 && scene.time.dt > limit)
+      ctx.fail("/time/dt",
+               "WCSPH step " + num(scene.time.dt) + " s exceeds the acoustic limit 0.4 h / c = " + num(limit) +
+                   " s (sound speed c = sqrt(stiffness / rest_density) = " + num(c) + " m/s with stiffness " +
+                   num(scene.solver.stiffness) + " Pa*m" + (default_stiffness ? ", the scene's default" : "") +
+                   ", h = " + num(h) + " m); use time.dt <= " + num(limit) + " or time.dt=null for the adaptive step");
+  }
 
   // Bounds of everything at t = 0.
   scene.bounds_min = scene.bounds_max = scene.fluid_x.front();

@@ -53,7 +53,11 @@ SolverSettings read_solver(Reader& r, const Context& ctx) {
                                          "; need 1 <= min_iterations <= max_iterations <= 10000");
   s.pressure_init = r.enumeration("pressure_init", s.pressure_init,
                                   {{"warm", PressureInit::WarmStart}, {"thesis", PressureInit::Thesis}});
-  s.stiffness = r.number("stiffness", s.stiffness, Range::positive("[Pa*m]"));
+  // Absent or null: the scene's default (wcsph_default_stiffness), set in parse_scene once
+  // the fluid exists.
+  if (const json* k = r.find("stiffness"); k && !k->is_null())
+    s.stiffness = ctx.number(*k, r.at("stiffness"), Range::positive("[Pa*m]"));
+  r.resolved()["stiffness"] = s.stiffness > 0 ? json(s.stiffness) : json(nullptr);
   s.boundary_pressure = r.enumeration("boundary_pressure", s.boundary_pressure,
                                       {{"solved", BoundaryPressure::Solved},
                                        {"extrapolation", BoundaryPressure::Extrapolation},

@@ -19,18 +19,8 @@ namespace {
 // weakly compressible fluid, c = 10 v_max, with v_max = sqrt(2 g H) of the fluid's
 // initial height H (or its fastest initial particle, if faster).
 double incompressible_sound_speed(const SimulationSetup& setup) {
-  const Vec2 g = setup.solver.gravity;
-  double vmax = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const Vec2& v : setup.fluid_v) vmax = std::max(vmax, v.norm());
-  if (g.norm() > 0) {
-    const Vec2 up = -g.normalized();
-    for (const Vec2& x : setup.fluid_x) {
-      lo = std::min(lo, x.dot(up));
-      hi = std::max(hi, x.dot(up));
-    }
-    if (hi >= lo) vmax = std::max(vmax, std::sqrt(2.0 * g.norm() * (hi - lo + setup.spacing)));
-  }
-  return 10.0 * vmax;
+  const double v0 = fastest_initial_speed(setup), H = fluid_height(setup);
+  return 10.0 * std::max(v0, std::sqrt(2.0 * setup.solver.gravity.norm() * H));
 }
 
 }  // namespace
@@ -113,6 +103,9 @@ Simulation::Simulation(const SimulationSetup& setup)
   lost_max_ = setup.bounds_max + Vec2::Constant(margin);
 
   last_frame_ = static_cast<Index>(std::ceil(setup.time.duration * setup.time.fps - 1e-9));
+  if (!(settings_.stiffness > 0)) settings_.stiffness = wcsph_default_stiffness(setup);
+  SLUICE_ASSERT(settings_.type != SolverType::WCSPH || settings_.stiffness > 0,
+                "WCSPH has a stiffness (the scene refuses a setup without one)");
   wcsph_speed_ = std::sqrt(settings_.stiffness / settings_.rest_density);
   sound_speed_ = settings_.sound_speed;
   if (sound_speed_ <= 0)

@@ -57,7 +57,8 @@ struct SolverSettings {
   // Off: Eq. 26 as printed, where the boundary enters d_ii once. See solve_pressure_iisph.
   bool boundary_diagonal = true;
   // WCSPH (section 2.3.1)
-  double stiffness = 1.0e6;  // k [Pa*m], > 0
+  // k [Pa*m], > 0; 0: the scene's default, wcsph_default_stiffness (solver/setup.h).
+  double stiffness = 0.0;
   // Boundaries (chapter 4)
   BoundaryPressure boundary_pressure = BoundaryPressure::Solved;
   // Boundary volume scale, V_b = gamma1 / sum_b W (section 4.1), > 0. Akinci's volume

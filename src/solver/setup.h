@@ -39,4 +39,17 @@ struct SimulationSetup {
   Vec2 bounds_min{0, 0}, bounds_max{0, 0};  // box around all particles at t = 0
 };
 
+// The fluid's initial extent along gravity, plus one spacing (the rows' own height); 0
+// without gravity.
+double fluid_height(const SimulationSetup& setup);
+// The fastest initial fluid particle's speed [m/s].
+double fastest_initial_speed(const SimulationSetup& setup);
+
+// WCSPH's stiffness when the scene gives none: k = rho0 c0^2 with c0 = 20 v_ref, v_ref the
+// larger of sqrt(g H) (H: the fluid's initial height along gravity) and its fastest
+// initial particle. DualSPHysics' default (speed of sound = coefsound sqrt(g H), coefsound
+// 20): the column's hydrostatic compression is g H / c0^2 = 0.25 % at the floor. 0 when
+// the setup has neither gravity nor initial motion to scale it by.
+double wcsph_default_stiffness(const SimulationSetup& setup);
+
 }  // namespace sluice
