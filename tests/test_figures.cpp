@@ -247,9 +247,12 @@ TEST(Experiments, IterationsGrowWithTimeStepAndColumnHeight) {
   ASSERT_EQ(dt.rows.size(), 2u);
   EXPECT_GT(value(dt, 1, "avg_iterations"), value(dt, 0, "avg_iterations"));  // Figure 6a
   const auto h = io::read_csv_table((dir.work() / "out/column-height/column_height.csv").string());
-  ASSERT_EQ(h.rows.size(), 2u);
+  ASSERT_EQ(h.rows.size(), 4u);  // Jacobi at 0.25 and 0.5 m, then Chebyshev at both
+  EXPECT_EQ(h.rows[0][0], "jacobi");
+  EXPECT_EQ(h.rows[2][0], "chebyshev");
   EXPECT_GT(value(h, 1, "particles"), value(h, 0, "particles"));
   EXPECT_GT(value(h, 1, "avg_iterations"), value(h, 0, "avg_iterations"));  // Figure 6b
+  EXPECT_LT(value(h, 3, "avg_iterations"), value(h, 1, "avg_iterations"));  // Chebyshev's fewer at 0.5 m
   EXPECT_TRUE(fs::exists(dir.work() / "out/README.md"));                    // the index of several experiments
 }
 

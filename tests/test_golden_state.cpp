@@ -51,6 +51,7 @@ struct Config {
 const std::vector<Config>& configs() {
   static const std::vector<Config> c = {
       {"iisph_solved", kDamBreak, {}},
+      {"iisph_chebyshev", kDamBreak, {"solver.pressure_solver=chebyshev"}},
       {"iisph_extrapolation", kDamBreak, {"solver.boundary_pressure=extrapolation"}},
       {"iisph_mirroring", kDamBreak, {"solver.boundary_pressure=mirroring"}},
       {"iisph_zero", kDamBreak, {"solver.boundary_pressure=zero"}},

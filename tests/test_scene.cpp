@@ -428,6 +428,21 @@ TEST(SceneSettings, WcsphStiffnessDefaultsFromTheFluid) {
   EXPECT_TRUE(iisph.resolved["solver"]["stiffness"].is_null());
 }
 
+// solver.pressure_solver and solver.chebyshev_rho: the choices, the default and the range.
+TEST(SceneSettings, PressureSolverChoices) {
+  const std::string text = scene_with("");
+  EXPECT_EQ(parse_scene(text, kFile).solver.pressure_solver, PressureSolver::Jacobi);
+  const Scene c = parse_scene(text, kFile, {"solver.pressure_solver=chebyshev", "solver.chebyshev_rho=0.95"});
+  EXPECT_EQ(c.solver.pressure_solver, PressureSolver::Chebyshev);
+  EXPECT_EQ(c.solver.chebyshev_rho, 0.95);
+  EXPECT_EQ(c.resolved["solver"]["pressure_solver"], "chebyshev");
+  const std::string bad = error_of(text, {"solver.pressure_solver=cg"});
+  EXPECT_NE(bad.find("/solver/pressure_solver"), std::string::npos) << bad;
+  EXPECT_NE(bad.find("chebyshev"), std::string::npos) << bad;
+  const std::string rho = error_of(text, {"solver.chebyshev_rho=1"});
+  EXPECT_NE(rho.find("/solver/chebyshev_rho: value 1 is out of range; must be in [0, 1)"), std::string::npos) << rho;
+}
+
 // A fixed WCSPH step above 0.4 h / c is refused, naming the limit and the stiffness.
 TEST(SceneSettings, WcsphStepAboveTheAcousticLimitIsRefused) {
   // k = 1e6: c = 31.62 m/s, limit 0.4 * 0.1 / c = 1.265e-3 s.

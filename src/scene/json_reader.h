@@ -35,6 +35,9 @@ struct Range {
   static Range open_closed(double lo, double hi, std::string unit = "") {
     return {lo, hi, true, false, std::move(unit)};
   }
+  static Range closed_open(double lo, double hi, std::string unit = "") {
+    return {lo, hi, false, true, std::move(unit)};
+  }
 
   bool contains(double v) const;
   std::string describe() const;

@@ -53,6 +53,9 @@ SolverSettings read_solver(Reader& r, const Context& ctx) {
                                          "; need 1 <= min_iterations <= max_iterations <= 10000");
   s.pressure_init = r.enumeration("pressure_init", s.pressure_init,
                                   {{"warm", PressureInit::WarmStart}, {"thesis", PressureInit::Thesis}});
+  s.pressure_solver = r.enumeration("pressure_solver", s.pressure_solver,
+                                    {{"jacobi", PressureSolver::Jacobi}, {"chebyshev", PressureSolver::Chebyshev}});
+  s.chebyshev_rho = r.number("chebyshev_rho", s.chebyshev_rho, Range::closed_open(0, 1));
   // Absent or null: the scene's default (wcsph_default_stiffness), set in parse_scene once
   // the fluid exists.
   if (const json* k = r.find("stiffness"); k && !k->is_null())

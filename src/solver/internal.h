@@ -34,6 +34,8 @@ struct SolverScratch {
   // Pressure boundaries (BoundaryPressure::Solved): each sample's source term and
   // diagonal, the counterparts of Eq. 19 and 22 for its density constraint.
   std::vector<double> bnd_s, bnd_aii;
+  // Chebyshev's semi-iteration: the fluid's and the samples' pressures one iteration back.
+  std::vector<double> p_prev, pb_prev;
   std::vector<double> work;  // boundary work on each fluid particle in this step [J/m]
 };
 

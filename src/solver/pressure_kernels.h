@@ -38,10 +38,21 @@ namespace sluice {
   return t.dt * (t.mass * ap + t.gamma2 * ai.dot(scratch_->grad_b[i]));
 }
 
+// Chebyshev's semi-iteration (Golub & Varga 1961; projected as in Wang 2015): the
+// Jacobi iterate p_hat of p_k is extrapolated to p_{k+1} = w (p_hat - p_{k-1}) + p_{k-1},
+// clamped at zero like Eq. 21 (clamping p_hat first changes nothing: w >= 1). Shifts
+// prev from p_{k-1} to p_k.
+[[gnu::always_inline]] inline double chebyshev_extrapolate(double p_hat, double p_k, double& prev, double w) {
+  const double p = std::max(w * (p_hat - prev) + prev, 0.0);
+  prev = p_k;
+  return p;
+}
+
 [[gnu::always_inline]] inline void Simulation::jacobi_update_of(Index i, const PressureTerms& t) {
   const double ap = pressure_operator_of(i, t);
   const double si = scratch_->s[i], aii = scratch_->a_ii[i];
-  const double p = aii != 0.0 ? std::max(fluid_.p[i] + t.omega / aii * (si - ap), 0.0) : 0.0;
+  double p = aii != 0.0 ? std::max(fluid_.p[i] + t.omega / aii * (si - ap), 0.0) : 0.0;
+  if (t.chebyshev > 0.0) p = chebyshev_extrapolate(p, fluid_.p[i], scratch_->p_prev[i], t.chebyshev);
   fluid_.p[i] = p;
   scratch_->p_over_rho2[i] = p / (fluid_.rho[i] * fluid_.rho[i]);
   scratch_->err[i] = std::max(t.err_scale * (ap - si), 0.0);

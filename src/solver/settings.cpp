@@ -20,4 +20,6 @@ const char* to_string(BoundaryPressure b) {
 
 const char* to_string(PressureInit p) { return p == PressureInit::Thesis ? "thesis" : "warm"; }
 
+const char* to_string(PressureSolver p) { return p == PressureSolver::Chebyshev ? "chebyshev" : "jacobi"; }
+
 }  // namespace sluice

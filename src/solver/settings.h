@@ -27,9 +27,16 @@ enum class PressureInit {
   WarmStart,  // p^(0) = 0.5 * p from the previous step ([Ihm+14a]'s choice)
 };
 
+// How IISPH solves its PPE (chapter 3).
+enum class PressureSolver {
+  Jacobi,     // Algorithm 2: relaxed Jacobi (Eq. 21)
+  Chebyshev,  // the same sweeps, each extrapolated by Chebyshev's semi-iteration (chebyshev_rho)
+};
+
 const char* to_string(SolverType t);
 const char* to_string(BoundaryPressure b);
 const char* to_string(PressureInit p);
+const char* to_string(PressureSolver p);
 
 struct SolverSettings {
   SolverType type = SolverType::IISPH;
@@ -52,6 +59,10 @@ struct SolverSettings {
   int min_iterations = 3;          // [Cor+19]: at least 3 iterations
   int max_iterations = 100;
   PressureInit pressure_init = PressureInit::WarmStart;
+  PressureSolver pressure_solver = PressureSolver::Jacobi;
+  // Chebyshev: the spectral radius assumed for the relaxed Jacobi iteration, in [0, 1).
+  // Any value converges where Jacobi does; near the true radius is fastest.
+  double chebyshev_rho = 0.98;
   // Include in a_ii the dependence of the boundary pressure on p_i (mirroring: p_b = p_i
   // doubles the boundary part; extrapolation: p_b carries p_i with weight W_bi / sum W).
   // Off: Eq. 26 as printed, where the boundary enters d_ii once. See solve_pressure_iisph.

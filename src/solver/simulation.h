@@ -127,6 +127,8 @@ class Simulation {
   // Constants of Eq. 20, 21, 23, 24 within a step, read once per sweep.
   struct PressureTerms {
     double mass, c_gamma3, gamma3_rho0, gamma2, omega, dt, err_scale;
+    // Chebyshev's weight of this iteration (chebyshev_weight); 0: plain relaxed Jacobi.
+    double chebyshev = 0.0;
     bool boundary_field;  // p_b from its own array (extrapolated or solved), not p_i or 0
   };
   PressureTerms pressure_terms(double dt) const;
