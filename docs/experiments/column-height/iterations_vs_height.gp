@@ -5,11 +5,20 @@ set grid lc rgb "#dddddd"
 set key top left box opaque
 set xlabel "column height [m]" noenhanced
 set ylabel "average solver iterations per step" noenhanced
+set key outside top center horizontal box opaque
 $s0 << EOD
-0.25 6.424
-0.5 11.95
-1 23.53
-1.5 34.88
-2 45.97
+0.25 6.057
+0.5 12.09
+1 23.84
+2 46.56
+4 83.96
 EOD
-plot $s0 using 1:2 with linespoints pt 7 ps 1.2 lw 2 lc rgb "#1f77b4" title "column-height" noenhanced
+$s1 << EOD
+0.25 4.7
+0.5 6.612
+1 9.092
+2 13.44
+4 21.78
+EOD
+plot $s0 using 1:2 with linespoints pt 7 ps 1.2 lw 2 lc rgb "#1f77b4" title "jacobi" noenhanced, \
+     $s1 using 1:2 with linespoints pt 7 ps 1.2 lw 2 lc rgb "#d62728" title "chebyshev" noenhanced
