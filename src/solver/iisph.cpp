@@ -127,17 +127,17 @@ Index Simulation::prepare_pressure_system(double dt) {
   return active_samples;
 }
 
+namespace {
+// Chebyshev's extrapolation starts after this many plain Jacobi iterations (the delay of
+// Wang 2015): a step that converges within them, a fluid at rest, is Jacobi's bit for bit.
+constexpr int kChebyshevDelay = 3;
+
 // The weight w_{l+1} of Chebyshev's semi-iteration in iteration l (0-based) for a Jacobi
 // iteration of spectral radius rho: 1, 2 / (2 - rho^2), then 4 / (4 - rho^2 w_l). Its
 // residual polynomial is T_l(mu / rho) / T_l(1 / rho) on each eigenvalue mu of the
 // Jacobi iteration, below 1 for every |mu| < 1: any rho converges where Jacobi does, the
 // modes with |mu| <= rho fastest. Modes at mu near 1 (the lattice-scale near-null modes of
 // Eq. 24's sum form) it leaves alone, as Jacobi does.
-namespace {
-// Chebyshev's extrapolation starts after this many plain Jacobi iterations (the delay of
-// Wang 2015): a step that converges within them, a fluid at rest, is Jacobi's bit for bit.
-constexpr int kChebyshevDelay = 3;
-
 double chebyshev_weight(int l, double previous, double rho) {
   if (l == 0) return 1.0;
   if (l == 1) return 2.0 / (2.0 - rho * rho);
