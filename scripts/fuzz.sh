@@ -12,7 +12,8 @@
 # (FUZZ_SEED, default 1) so that CI runs start alike. To refresh the kept corpus after a
 # long run: build-fuzz/scene_fuzzer -merge=1 fuzz/corpus build-fuzz/corpus. A crashing, leaking, too slow or too hungry input is saved as
 # build-fuzz/artifacts/{crash,leak,timeout,oom}-<hash>, and libFuzzer stops at the
-# first one. Exit status: 0 when nothing was found, 1 otherwise.
+# first one; an input over 10 s but inside -timeout, as slow-unit-<hash> (reported only).
+# Exit status: 0 when nothing but slow units was found, 1 otherwise.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-120}
@@ -64,7 +65,12 @@ set -e
 executions=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
 [ -n "$executions" ] || executions=$(grep -o '^#[0-9]*' "$log" | tail -1 | tr -d '#')
 rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
-findings=$(grep -c '^artifact_prefix=.*Test unit written to' "$log" || true)
+# Crashes, leaks, timeouts (-timeout) and out-of-memory inputs fail; a slow unit (an input
+# over libFuzzer's 10 s report threshold but inside -timeout) depends on the machine's load,
+# so it is reported, not failed.
+findings=$(grep '^artifact_prefix=.*Test unit written to' "$log" | grep -vc '/slow-unit-' || true)
+slow=$(grep -o 'Test unit written to .*/slow-unit-[0-9a-f]*' "$log" | sed 's/^Test unit written to //' || true)
+[ -z "$slow" ] || echo "fuzz: slow inputs (over 10 s, under the 30 s timeout), kept for a look: $slow"
 corpus=$(find "$out/corpus" -type f | wc -l)
 echo "fuzz: $executions executions in $seconds s (${rate:-?} per second), corpus $corpus inputs"
 if [ "$status" -eq 0 ] && [ "$findings" -eq 0 ]; then
