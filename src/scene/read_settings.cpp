@@ -113,6 +113,8 @@ StabilityLimits read_stability(Reader& r) {
   s.bounds_margin = r.number("bounds_margin", s.bounds_margin, Range::positive("(scene sizes)"));
   s.max_leaked_percent = r.number("max_leaked_percent", s.max_leaked_percent,
                                   Range{0, 100, false, false, "(percent of the fluid particles)"});
+  s.max_energy_gain = r.number("max_energy_gain", s.max_energy_gain,
+                               Range::positive("(fraction of the energy available to the fluid)"));
   r.finish();
   return s;
 }

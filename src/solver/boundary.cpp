@@ -119,12 +119,14 @@ void Simulation::update_boundary_volumes() {
   compute_volumes(boundary_grid_, volume_update_, boundary_.volume);
 }
 
-double Simulation::max_boundary_speed() const {
+double Simulation::max_boundary_speed() const { return boundary_speed_at(time_); }
+
+double Simulation::boundary_speed_at(double t) const {
   double vmax = 0.0;
   for (size_t o = 0; o < setup_.objects.size(); ++o) {
     const BoundaryObject& obj = setup_.objects[o];
     if (!obj.moving) continue;
-    const PoseMap pose(obj.motion.at(time_));
+    const PoseMap pose(obj.motion.at(t));
     for (Index k = 0; k < obj.count; ++k)
       vmax = std::max(vmax, pose.velocity(setup_.boundary_x[obj.first + k]).squaredNorm());
   }

@@ -110,6 +110,22 @@ Simulation::Simulation(const SimulationSetup& setup)
   sound_speed_ = settings_.sound_speed;
   if (sound_speed_ <= 0)
     sound_speed_ = settings_.type == SolverType::WCSPH ? wcsph_speed_ : incompressible_sound_speed(setup);
+  {
+    StepStats st;
+    measure_energy(st);
+    const Vec2 g = settings_.gravity;
+    double lowest = std::numeric_limits<double>::infinity();  // min over the bounds' corners of -g . c
+    for (const Vec2& c : {setup.bounds_min, setup.bounds_max, Vec2(setup.bounds_min.x(), setup.bounds_max.y()),
+                          Vec2(setup.bounds_max.x(), setup.bounds_min.y())})
+      lowest = std::min(lowest, -g.dot(c));
+    initial_energy_ = st.mechanical_energy;
+    initial_available_energy_ = st.kinetic_energy + std::max(st.potential_energy - mass_ * fluid_.size() * lowest, 0.0);
+    if (has_moving_boundaries()) {
+      const double samples = std::clamp(std::ceil(4.0 * setup.time.duration * setup.time.fps), 256.0, 20000.0);
+      for (double k = 0; k <= samples; ++k)
+        peak_boundary_speed_ = std::max(peak_boundary_speed_, boundary_speed_at(setup.time.duration * k / samples));
+    }
+  }
   reorder_fluid();
   recompute_density();
   if (setup.time.settle > 0) settle();

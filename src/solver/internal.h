@@ -36,7 +36,8 @@ struct SolverScratch {
   std::vector<double> bnd_s, bnd_aii;
   // Chebyshev's semi-iteration: the fluid's and the samples' pressures one iteration back.
   std::vector<double> p_prev, pb_prev;
-  std::vector<double> work;  // boundary work on each fluid particle in this step [J/m]
+  std::vector<double> volume;  // m / rho_i of fluid particles (apply_nonpressure)
+  std::vector<double> work;    // boundary work on each fluid particle in this step [J/m]
 };
 
 }  // namespace sluice

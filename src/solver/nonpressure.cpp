@@ -25,6 +25,10 @@ void Simulation::apply_nonpressure(double dt) {
   a_v.resize(n);
   const double eps = 0.01 * setup_.spacing * setup_.spacing;
   const bool work = has_moving_boundaries();
+  // m_j / rho_j once per particle, not once per pair (the same bits).
+  std::vector<double>& vol = scratch_->volume;
+  vol.resize(n);
+  parallel_for(n, [&](Index i) { vol[i] = mass_ / fluid_.rho[i]; });
   parallel_for(n, [&](Index i) {
     const Vec2 xi = fluid_.x[i], vi = fluid_.v[i];
     const double rhoi = fluid_.rho[i];
@@ -33,8 +37,11 @@ void Simulation::apply_nonpressure(double dt) {
       const Index j = ff_.j[k];
       const Vec2 xij = xi - fluid_.x[j], vij = vi - fluid_.v[j], gw = ff_.grad[k].cast<double>();
       const double r2 = xij.squaredNorm() + eps, vx = vij.dot(xij);
-      lap += (mass_ / fluid_.rho[j]) * (xij.dot(gw) / r2) * vij;
-      if (vx < 0.0) art += (mass_ * vx / (r2 * 0.5 * (rhoi + fluid_.rho[j]))) * gw;
+      lap += vol[j] * (xij.dot(gw) / r2) * vij;
+      // A select, not a branch: approaching and receding pairs alternate at random, and
+      // adding 0 * grad W leaves the sum's bits as the branch left them.
+      const double pi_ij = mass_ * vx / (r2 * 0.5 * (rhoi + fluid_.rho[j]));
+      art += (vx < 0.0 ? pi_ij : 0.0) * gw;
     }
     Vec2 acc = 2.0 * nu * lap + avc * art;
     double w = 0.0;

@@ -106,6 +106,10 @@ struct StabilityLimits {
   // Fluid particles found past a wall's first sample layer at a frame time, as a percentage
   // of all fluid particles; more means the boundary no longer holds the fluid.
   double max_leaked_percent = 1.0;
+  // The fluid's mechanical energy may rise above its start by at most this fraction of
+  // the energy available to it (Simulation::energy_gain_bound): a fluid that gains more
+  // has blown up, even one that stays inside the bounds and out of the walls.
+  double max_energy_gain = 0.1;
 };
 
 }  // namespace sluice

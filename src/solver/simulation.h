@@ -114,6 +114,7 @@ class Simulation {
   void solve_pressure_wcsph(double dt, StepStats& st);
   void integrate(double dt);  // semi-implicit Euler (Algorithm 1, last loop)
   void check_stability(const StepStats& st) const;
+  double energy_gain_bound() const;  // largest rise of the mechanical energy [J/m] (check_stability)
   void reorder_fluid();
   std::vector<double> boundary_volumes_from_scratch() const;  // section 4.1 for every sample (SolverProbe)
 
@@ -151,6 +152,7 @@ class Simulation {
   // Section 4.1 for the samples `which`, over the grid's points.
   void compute_volumes(const SpatialHashGrid& grid, const std::vector<Index>& which, std::vector<double>& volume) const;
   double max_boundary_speed() const;  // fastest moving sample at time_ (for Eq. 14)
+  double boundary_speed_at(double t) const;
 
   SimulationSetup setup_;
   SolverSettings settings_;
@@ -183,6 +185,11 @@ class Simulation {
   Index frame_ = 0;
   Index last_frame_ = 0;
   Vec2 lost_min_, lost_max_;  // a particle outside this box is lost (instability)
+  // Before settling (a resume computes the same): the mechanical energy, and the
+  // kinetic energy plus the fall of the fluid to the scene's lowest point (its bounds'
+  // lowest corner along g) [J/m].
+  double initial_energy_ = 0, initial_available_energy_ = 0;
+  double peak_boundary_speed_ = 0;  // fastest moving sample over the run, sampled 4 times per frame
 };
 
 }  // namespace sluice

@@ -48,23 +48,24 @@ class CubicSpline2D {
   // Gradient with respect to x_i of W(x_i - x_j): grad W(x_ij).
   Vec2 gradW(const Vec2& r) const { return r * dWdr_over_r(r.norm()); }
 
-  // W(r) and dW/dr / r together, sharing q (the neighbour pass needs both).
+  // W(r) and dW/dr / r together, sharing q (the neighbour pass needs both). Both
+  // pieces are computed and one selected: which one a pair needs is random in the
+  // neighbour order, and a select gives the bits of the branch without its mispredictions.
   void eval(double r, double& w, double& dw_over_r) const {
     const double q = r * inv_h_;
     if (q >= 2.0) {
       w = dw_over_r = 0.0;
       return;
     }
-    const double a = 2.0 - q;
-    if (q < 1.0) {
-      const double b = 1.0 - q;
-      w = alpha_ * (a * a * a - 4.0 * b * b * b);
-      // (-3 a^2 + 12 b^2) / q = -12 + 9 q: no division, and finite at r = 0.
-      dw_over_r = alpha_ * inv_h_ * inv_h_ * (9.0 * q - 12.0);
-    } else {
-      w = alpha_ * a * a * a;
-      dw_over_r = alpha_ * inv_h_ * (-3.0 * a * a) / r;
-    }
+    const bool near = q < 1.0;
+    const double a = 2.0 - q, b = 1.0 - q;
+    const double w_near = alpha_ * (a * a * a - 4.0 * b * b * b);
+    // (-3 a^2 + 12 b^2) / q = -12 + 9 q: no division, and finite at r = 0.
+    const double d_near = alpha_ * inv_h_ * inv_h_ * (9.0 * q - 12.0);
+    const double w_far = alpha_ * a * a * a;
+    const double d_far = alpha_ * inv_h_ * (-3.0 * a * a) / (near ? 1.0 : r);
+    w = near ? w_near : w_far;
+    dw_over_r = near ? d_near : d_far;
   }
 
  private:
