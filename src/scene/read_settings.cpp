@@ -115,6 +115,8 @@ StabilityLimits read_stability(Reader& r) {
                                   Range{0, 100, false, false, "(percent of the fluid particles)"});
   s.max_energy_gain = r.number("max_energy_gain", s.max_energy_gain,
                                Range::positive("(fraction of the energy available to the fluid)"));
+  s.max_speed_ratio = r.number("max_speed_ratio", s.max_speed_ratio,
+                               Range::at_least(1, "(times the speed the fluid can have been given)"));
   r.finish();
   return s;
 }

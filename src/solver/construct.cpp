@@ -119,6 +119,7 @@ Simulation::Simulation(const SimulationSetup& setup)
                           Vec2(setup.bounds_max.x(), setup.bounds_min.y())})
       lowest = std::min(lowest, -g.dot(c));
     initial_energy_ = st.mechanical_energy;
+    for (const Vec2& v : fluid_.v) initial_max_speed_ = std::max(initial_max_speed_, v.norm());
     initial_available_energy_ = st.kinetic_energy + std::max(st.potential_energy - mass_ * fluid_.size() * lowest, 0.0);
     if (has_moving_boundaries()) {
       const double samples = std::clamp(std::ceil(4.0 * setup.time.duration * setup.time.fps), 256.0, 20000.0);

@@ -110,6 +110,10 @@ struct StabilityLimits {
   // the energy available to it (Simulation::energy_gain_bound): a fluid that gains more
   // has blown up, even one that stays inside the bounds and out of the walls.
   double max_energy_gain = 0.1;
+  // The fastest particle may move at most this many times the speed the fluid can have
+  // been given (Simulation::speed_bound): a few particles shot off at tens of m/s are a
+  // blow-up that the energy test, summed over the fluid, does not see.
+  double max_speed_ratio = 3.0;
 };
 
 }  // namespace sluice

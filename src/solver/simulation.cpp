@@ -64,6 +64,7 @@ void Simulation::settle() {
     StepStats st;
     st.step = -settle_steps_;
     st.time = t;
+    st.dt = dt;
     advance(dt, st, /*settling=*/true);
     const double keep = std::exp(-dt / tau);
     parallel_for(fluid_.size(), [&](Index i) { fluid_.v[i] *= keep; });

@@ -115,6 +115,7 @@ class Simulation {
   void integrate(double dt);  // semi-implicit Euler (Algorithm 1, last loop)
   void check_stability(const StepStats& st) const;
   double energy_gain_bound() const;  // largest rise of the mechanical energy [J/m] (check_stability)
+  double speed_bound() const;        // largest plausible particle speed [m/s] (check_stability)
   void reorder_fluid();
   std::vector<double> boundary_volumes_from_scratch() const;  // section 4.1 for every sample (SolverProbe)
 
@@ -189,6 +190,7 @@ class Simulation {
   // kinetic energy plus the fall of the fluid to the scene's lowest point (its bounds'
   // lowest corner along g) [J/m].
   double initial_energy_ = 0, initial_available_energy_ = 0;
+  double initial_max_speed_ = 0;    // fastest fluid particle at t = 0, before settling [m/s]
   double peak_boundary_speed_ = 0;  // fastest moving sample over the run, sampled 4 times per frame
 };
 

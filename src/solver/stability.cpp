@@ -25,6 +25,16 @@ double Simulation::energy_gain_bound() const {
   return e;
 }
 
+// The bound of check_stability's speed test [m/s]: max_speed_ratio times the speed of a fall
+// through the whole scene (under at least standard gravity) plus the fastest initial
+// speed, plus twice the moving walls' peak speed. A dam break's front runs at 2 sqrt(g H),
+// under a fall through its tank.
+double Simulation::speed_bound() const {
+  const double g = std::max(settings_.gravity.norm(), 9.81);
+  const double fall = std::sqrt(2.0 * g * (setup_.bounds_max - setup_.bounds_min).norm());
+  return setup_.limits.max_speed_ratio * (fall + initial_max_speed_) + 2.0 * peak_boundary_speed_;
+}
+
 void Simulation::check_stability(const StepStats& st) const {
   auto fail = [&](const std::string& cause) {
     std::ostringstream os;
@@ -75,6 +85,16 @@ void Simulation::check_stability(const StepStats& st) const {
        << " J/m that stability.max_energy_gain = " << setup_.limits.max_energy_gain
        << " allows (that fraction of the energy available to the fluid"
        << (has_moving_boundaries() ? ", plus what the moving walls can have given it" : "") << ")";
+    fail(os.str());
+  }
+  // max_cfl = v_max dt / h (Eq. 14), after the step.
+  const double vmax = st.dt > 0 ? st.max_cfl * setup_.spacing / st.dt : 0.0, vbound = speed_bound();
+  if (vmax > vbound) {
+    std::ostringstream os;
+    os << "the fastest fluid particle moves at " << vmax << " m/s, more than the " << vbound
+       << " m/s that stability.max_speed_ratio = " << setup_.limits.max_speed_ratio
+       << " allows (that many times a fall through the whole scene plus the initial speeds"
+       << (has_moving_boundaries() ? ", plus twice the moving walls' peak speed" : "") << ")";
     fail(os.str());
   }
   if (st.density_error_percent > setup_.limits.max_error_percent) {
