@@ -86,6 +86,7 @@ Index Simulation::prepare_pressure_system(double dt) {
   const double c = (mirror && s.boundary_diagonal) ? 2.0 : 1.0;
   const bool coupling = extrapolate && s.boundary_diagonal;
   const bool thesis_init = s.pressure_init == PressureInit::Thesis;
+  const double warm = warm_start_factor(s.pressure_solver);
   const double vb_scale = boundary_velocity_in_source_ ? 1.0 : 0.0;
 
   // Source term s_i (Eq. 19), diagonal a_ii (Eq. 26), initial pressure p^(0) (Eq. 21).
@@ -118,7 +119,7 @@ Index Simulation::prepare_pressure_system(double dt) {
     double aii = dt * (d.dot(sum_grad + g2 * scratch_->grad_b[i]) - mass_ * mass_ * inv_rho2 * grad2);
     if (coupling) aii += dt * mass_ * (g3 / (rho0 * rho0)) * extrapolation_coupling(i);
     scratch_->a_ii[i] = aii;
-    double p0 = kWarmStartFactor * fluid_.p[i];
+    double p0 = warm * fluid_.p[i];
     if (thesis_init) p0 = aii != 0.0 ? std::max(omega * scratch_->s[i] / aii, 0.0) : 0.0;
     fluid_.p[i] = p0;
     scratch_->p_over_rho2[i] = p0 * inv_rho2;
@@ -205,6 +206,7 @@ Index Simulation::prepare_solved_boundary(double dt) {
   const SolverSettings& s = settings_;
   const double rho0 = s.rest_density, g1r = s.gamma1 * rho0, inv_rho0_2 = 1.0 / (rho0 * rho0);
   const bool thesis_init = s.pressure_init == PressureInit::Thesis;
+  const double warm = warm_start_factor(s.pressure_solver);
   const Index nb = boundary_.size();
   const double vb_scale = boundary_velocity_in_source_ ? 1.0 : 0.0;
   scratch_->bnd_s.resize(nb);
@@ -229,7 +231,7 @@ Index Simulation::prepare_solved_boundary(double dt) {
                                 dt * s.gamma3 * mass_ / (rho0 * rho0) * lumped);
     scratch_->bnd_s[b] = sb;
     scratch_->bnd_aii[b] = abb;
-    double p0 = abb != 0.0 ? kWarmStartFactor * boundary_.p[b] : 0.0;
+    double p0 = abb != 0.0 ? warm * boundary_.p[b] : 0.0;
     if (thesis_init) p0 = abb != 0.0 ? std::max(s.omega * sb / abb, 0.0) : 0.0;
     boundary_.p[b] = p0;
     scratch_->pb_over_rho2[b] = p0 * inv_rho0_2;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "solver/settings.h"
 
 namespace sluice {
 
@@ -49,6 +50,14 @@ namespace sluice::solver_detail {
 // checkerboard-like noise) forever; it then drives particles apart and a column at
 // rest never settles (kinetic energy grows). Halving it every step lets it decay.
 constexpr double kWarmStartFactor = 0.5;
+// Chebyshev's residual polynomial is steep at the Jacobi eigenvalue 1, so the modes the
+// operator barely sees grow faster within a solve and the old pressure must be forgotten
+// faster: at 0.5 a closed tank at rest gained 0.99 J/m in 10 s, at 0.1 0.025 J/m
+// (docs/performance.md, "Pressure solvers").
+constexpr double kChebyshevWarmStartFactor = 0.1;
+inline double warm_start_factor(PressureSolver solver) {
+  return solver == PressureSolver::Chebyshev ? kChebyshevWarmStartFactor : kWarmStartFactor;
+}
 
 class Stopwatch {
  public:

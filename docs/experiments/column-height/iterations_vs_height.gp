@@ -14,11 +14,11 @@ $s0 << EOD
 4 83.96
 EOD
 $s1 << EOD
-0.25 4.7
-0.5 6.612
-1 9.092
-2 13.44
-4 21.78
+0.25 6.465
+0.5 8.712
+1 12.34
+2 20.42
+4 36.76
 EOD
 plot $s0 using 1:2 with linespoints pt 7 ps 1.2 lw 2 lc rgb "#1f77b4" title "jacobi" noenhanced, \
      $s1 using 1:2 with linespoints pt 7 ps 1.2 lw 2 lc rgb "#d62728" title "chebyshev" noenhanced
