@@ -101,9 +101,14 @@ Candidate try_surfaceless(const char* client_ext, std::vector<std::string>& trie
 
 // Hardware devices first: a device advertising EGL_MESA_device_software is llvmpipe.
 Candidate try_devices(const char* client_ext, std::vector<std::string>& tried) {
+  // EGL_EXT_device_base is the older name of device_enumeration + device_query, and the one
+  // some NVIDIA drivers advertise.
   if (!has_extension(client_ext, "EGL_EXT_platform_device") ||
-      !has_extension(client_ext, "EGL_EXT_device_enumeration")) {
-    tried.push_back("device: EGL_EXT_platform_device / EGL_EXT_device_enumeration not supported by this libEGL");
+      !(has_extension(client_ext, "EGL_EXT_device_enumeration") ||
+        has_extension(client_ext, "EGL_EXT_device_base"))) {
+    tried.push_back(std::string("device: EGL_EXT_platform_device with EGL_EXT_device_enumeration (or _base) not "
+                                "supported by this libEGL (its client extensions: ") +
+                    (client_ext ? client_ext : "none") + ")");
     return {};
   }
   auto query_devices = egl_proc<PFNEGLQUERYDEVICESEXTPROC>("eglQueryDevicesEXT");
