@@ -1,6 +1,7 @@
 // `sluice bench --end-to-end`: a whole render timed and split, as a table and a CSV.
 // (Suite named Render*: it carries the CTest label render, which the sanitizer run of
-// .ci/run leaves out with what else runs the renderer.)
+// .ci/run leaves out with what else runs the renderer.) BenchCli: the modes' flags and
+// output directories, without the renderer.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -59,6 +60,65 @@ TEST(RenderBenchEndToEnd, TakesOneScene) {
   const test::Result r = test::run_sluice(dir, {"bench", "--end-to-end", "tiny.json", "tiny.json", "-o", "out"});
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("--end-to-end takes one scene"), std::string::npos) << r.err;
+}
+
+// An earlier render in -o DIR (frames, summary) stays unless --overwrite is given, as for
+// `render` (exit 3); refused before anything runs, so no EGL is needed here.
+TEST(BenchCli, EndToEndRefusesAnEarlierRunWithoutOverwrite) {
+  CaseDir dir;
+  test::write_text(dir.work() / "tiny.json", kTinyScene);
+  test::write_text(dir.work() / "out/frames/frame_00000.png", "earlier frame");
+  test::write_text(dir.work() / "out/summary.json", R"({"status": "completed"})");
+  const test::Result r = test::run_sluice(
+      dir, {"bench", "--end-to-end", "tiny.json", "--duration", "0.1", "--resolution", "64x64", "-o", "out"});
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_NE(r.err.find("sluice: output error: out: output directory holds a previous run (summary.json, frames/); "
+                       "pass --overwrite to replace it"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(test::read_text(dir.work() / "out/frames/frame_00000.png"), "earlier frame");
+  // An earlier bench's table alone is refused too.
+  test::fs::remove_all(dir.work() / "out");
+  test::write_text(dir.work() / "out/end_to_end.csv", "earlier");
+  const test::Result csv = test::run_sluice(dir, {"bench", "--end-to-end", "tiny.json", "-o", "out"});
+  EXPECT_EQ(csv.status, 3) << csv.err;
+  EXPECT_NE(csv.err.find("out: output directory holds a previous run (end_to_end.csv)"), std::string::npos) << csv.err;
+  EXPECT_EQ(test::read_text(dir.work() / "out/end_to_end.csv"), "earlier");
+}
+
+TEST(RenderBenchEndToEnd, OverwriteReplacesAnEarlierRun) {
+  CaseDir dir;
+  test::write_text(dir.work() / "tiny.json", kTinyScene);
+  test::write_text(dir.work() / "out/frames/frame_00009.png", "earlier frame");
+  const test::Result r = test::run_sluice(dir, {"bench", "--end-to-end", "tiny.json", "--duration", "0.1", "--fps",
+                                                "20", "--resolution", "64x64", "-o", "out", "--overwrite"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(test::fs::exists(dir.work() / "out/frames/frame_00009.png"));
+  EXPECT_TRUE(test::fs::exists(dir.work() / "out/end_to_end.csv"));
+}
+
+// A sweep's bench.csv is replaced only with --overwrite; the refusal comes before any run.
+TEST(BenchCli, SweepRefusesAnEarlierBenchCsvWithoutOverwrite) {
+  CaseDir dir;
+  test::write_text(dir.work() / "tiny.json", kTinyScene);
+  const std::vector<std::string> sweep = {"bench", "tiny.json", "--sweep", "solver.tolerance=0.1", "-o", "out"};
+  ASSERT_EQ(test::run_sluice(dir, sweep).status, 0);
+  const std::string first = test::read_text(dir.work() / "out/bench.csv");
+  const test::Result again = test::run_sluice(dir, sweep);
+  EXPECT_EQ(again.status, 3) << again.err;
+  EXPECT_NE(again.err.find("sluice: output error: out: output directory holds a previous run (bench.csv, bench.md"),
+            std::string::npos)
+      << again.err;
+  EXPECT_NE(again.err.find("pass --overwrite to replace it"), std::string::npos) << again.err;
+  EXPECT_EQ(again.out.find("sweep of"), std::string::npos) << "nothing runs: " << again.out;
+  EXPECT_EQ(test::read_text(dir.work() / "out/bench.csv"), first);
+  std::vector<std::string> overwrite = sweep;
+  overwrite.push_back("--overwrite");
+  const test::Result replaced = test::run_sluice(dir, overwrite);
+  EXPECT_EQ(replaced.status, 0) << replaced.err;
+  // --collect into a directory with a table: the same rule.
+  const test::Result collect = test::run_sluice(dir, {"bench", "--collect", "out", "-o", "out"});
+  EXPECT_EQ(collect.status, 3) << collect.err;
 }
 
 }  // namespace

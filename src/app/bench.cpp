@@ -12,6 +12,7 @@
 #include "analysis/plot.h"
 #include "analysis/sweep.h"
 #include "app/commands.h"
+#include "app/output_dir.h"
 #include "app/run.h"
 #include "io/output.h"
 #include "scene/scene.h"
@@ -66,6 +67,9 @@ std::string self_executable() {
   return ec ? std::string("sluice") : p.string();
 }
 
+// What a sweep or --collect writes into its directory.
+const std::vector<std::string> kSweepFiles = {"bench.csv", "bench.md", "bench.png", "bench.gp"};
+
 void print_sweep_header() {
   std::printf("%4s %-44s %-6s %5s %10s %7s %7s %10s %10s  %s\n", "run", "overrides", "solver", "stable", "s/sim_s",
               "steps", "iters", "avg_err_%", "max_err_%", "pareto");
@@ -116,6 +120,7 @@ int run_sweep(const BenchOptions& o) {
       for (const auto& s : common) line += " --set " + shell_quote(s);
       for (const auto& s : combos[i]) line += " --set " + shell_quote(s);
       if (o.threads > 0) line += " --threads " + std::to_string(o.threads);
+      if (o.overwrite) line += " --overwrite";
       char run[32];
       std::snprintf(run, sizeof run, "run_%04zu", i + 1);
       line += " -o " + shell_quote((dir / run).string());
@@ -131,6 +136,8 @@ int run_sweep(const BenchOptions& o) {
     return 0;
   }
   make_directory(dir);
+  // Checked before the first run: a sweep may take hours before its first bench.csv.
+  refuse_previous_files(dir, kSweepFiles, o.overwrite);
   std::printf("sweep of %s: %zu runs, %d threads\n", o.scenes[0].c_str(), combos.size(), omp_get_max_threads());
   print_sweep_header();
   std::vector<analysis::SweepRun> runs;
@@ -157,6 +164,7 @@ int run_collect(const BenchOptions& o) {
   }
   const fs::path dir(o.output_dir);
   make_directory(dir);
+  refuse_previous_files(dir, kSweepFiles, o.overwrite);
   analysis::mark_pareto_front(runs);
   print_sweep_header();
   for (std::size_t i = 0; i < runs.size(); ++i) print_sweep_row(i, runs[i]);
@@ -180,7 +188,9 @@ int run_end_to_end(const BenchOptions& o) {
   r.threads = o.threads;
   r.set = o.set;
   r.quiet = true;
-  r.overwrite = true;
+  // As for render: an earlier run's frames and exports in -o DIR go only with --overwrite.
+  r.overwrite = o.overwrite;
+  refuse_previous_files(r.output_dir, {"end_to_end.csv"}, o.overwrite);
   const auto t0 = std::chrono::steady_clock::now();
   run_render(r);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -30,6 +30,8 @@ Command add_bench(CLI::App& app) {
   benchcmd->add_option("--fps", bench->fps, "End-to-end: frames per second (default 60)")->check(positive_check());
   benchcmd->add_option("--resolution", bench->resolution, "End-to-end: WxH (default 1920x1080)");
   benchcmd->add_option("--collect", bench->collect, "Merge the bench.csv of these directories into -o DIR")->take_all();
+  benchcmd->add_flag("--overwrite", bench->overwrite,
+                     "Sweep, --collect, --end-to-end: replace an earlier run's files in the output directory");
   return {benchcmd, [bench] { return run_bench(*bench); }};
 }
 
