@@ -162,6 +162,23 @@ TEST(CompareCli, UsageErrorsExit2NamingTheFlagAndValue) {
   EXPECT_EQ(run_sluice(dir, {"compare", "a.png"}).status, 2) << "one image only";
 }
 
+// The diff image must not replace the mask either, however its path is spelled.
+TEST(CompareCli, DiffMustNotNameTheMask) {
+  CaseDir dir;
+  write_pair(dir);
+  Image mask(kW, kH);
+  mask.at(70, 40)[0] = 255;
+  render::write_png((dir.work() / "m.png").string(), mask);
+  const std::string before = test::read_text(dir.work() / "m.png");
+  for (const std::string diff : {"m.png", "./m.png"}) {
+    SCOPED_TRACE(diff);
+    const Result r = compare(dir, {"--mask", "m.png", "--diff", diff});
+    EXPECT_EQ(r.status, 2) << r.err;
+    expect_contains(r.err, "sluice: error: --diff " + diff + ": it names the mask m.png");
+    EXPECT_EQ(test::read_text(dir.work() / "m.png"), before) << "the mask was overwritten";
+  }
+}
+
 TEST(CompareCli, UnreadableImagesExit3) {
   CaseDir dir;
   write_pair(dir);

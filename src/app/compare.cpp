@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/commands.h"
@@ -85,13 +86,17 @@ CompareRule rule_of(const CompareOptions& o) {
   return r;
 }
 
-// The diff image must not replace an input (compare --diff A.png A.png B.png) nor be a folder.
+// The diff image must not replace an input (compare --diff A.png A.png B.png), the mask
+// included, nor be a folder. equivalent() sees through links and other spellings of a path.
 void check_diff_path(const CompareOptions& o) {
   if (o.diff.empty()) return;
   std::error_code ec;
-  for (const std::string& in : {o.a, o.b})
-    if (fs::equivalent(o.diff, in, ec))
-      throw FlagError("--diff", o.diff, "it names the input image " + in + "; choose another path for the diff image");
+  const std::pair<const std::string*, const char*> inputs[] = {
+      {&o.a, "input image "}, {&o.b, "input image "}, {&o.mask, "mask "}};
+  for (const auto& [in, what] : inputs)
+    if (!in->empty() && fs::equivalent(o.diff, *in, ec))
+      throw FlagError("--diff", o.diff,
+                      "it names the " + std::string(what) + *in + "; choose another path for the diff image");
   if (fs::is_directory(o.diff, ec))
     throw FlagError("--diff", o.diff, "is a directory; --diff takes the PNG file to write");
 }
