@@ -1,5 +1,6 @@
 // `sluice compare A.png B.png`: pixel comparison of two images for image regression in CI,
 // with presets, ignored regions and a report of where the images differ.
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -131,6 +132,15 @@ int run_compare(const CompareOptions& o) {
     return kCompareSize;
   }
   const PixelMask ignore = ignored_pixels(o, regions, a);
+  // Nothing left to compare would pass ("0 of 0 pixels") whatever the images hold.
+  if (!ignore.empty() && std::find(ignore.begin(), ignore.end(), 0) == ignore.end()) {
+    const std::string flags = o.mask.empty() ? "--region" : o.regions.empty() ? "--mask" : "--mask and --region";
+    std::string value = o.mask;
+    for (const std::string& r : o.regions) value += (value.empty() ? "" : " ") + r;
+    throw FlagError(flags, value,
+                    "they ignore all " + std::to_string(a.width) + "x" + std::to_string(a.height) +
+                        " pixels of the images, which leaves nothing to compare; ignore less");
+  }
   const CompareResult r = render::compare_images(a, b, rule.tolerance, rule.max_fraction, ignore);
   print_report(o, rule, r);
   if (!o.diff.empty() && r.differing > 0) {
