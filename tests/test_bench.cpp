@@ -4,6 +4,7 @@
 // output directories, without the renderer.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -119,6 +120,25 @@ TEST(BenchCli, SweepRefusesAnEarlierBenchCsvWithoutOverwrite) {
   // --collect into a directory with a table: the same rule.
   const test::Result collect = test::run_sluice(dir, {"bench", "--collect", "out", "-o", "out"});
   EXPECT_EQ(collect.status, 3) << collect.err;
+}
+
+// The command lines of --jobs, run and collected, give a table whose `set` column says
+// which values each run had (it was empty: each line passed them as --set).
+TEST(BenchCli, JobsRunsKeepTheirSettingsThroughCollect) {
+  CaseDir dir;
+  test::write_text(dir.work() / "tiny.json", kTinyScene);
+  const test::Result jobs = test::run_sluice(
+      dir, {"bench", "tiny.json", "--sweep", "solver.tolerance=0.1,0.01", "--jobs", "jobs.txt", "-o", "sweep"});
+  ASSERT_EQ(jobs.status, 0) << jobs.err;
+  const std::string cmd = "cd '" + dir.work().string() + "' && OMP_NUM_THREADS=1 sh jobs.txt >jobs.log 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << test::read_text(dir.work() / "jobs.log");
+  const test::Result collect =
+      test::run_sluice(dir, {"bench", "--collect", "sweep/run_0001", "sweep/run_0002", "-o", "sweep"});
+  ASSERT_EQ(collect.status, 0) << collect.err;
+  const std::vector<std::string> lines = split(test::read_text(dir.work() / "sweep/bench.csv"), '\n');
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_NE(lines[1].find(",\"solver.tolerance=0.1\","), std::string::npos) << lines[1];
+  EXPECT_NE(lines[2].find(",\"solver.tolerance=0.01\","), std::string::npos) << lines[2];
 }
 
 }  // namespace

@@ -118,7 +118,9 @@ int run_sweep(const BenchOptions& o) {
     for (std::size_t i = 0; i < combos.size(); ++i) {
       std::string line = shell_quote(self_executable()) + " bench " + shell_quote(o.scenes[0]);
       for (const auto& s : common) line += " --set " + shell_quote(s);
-      for (const auto& s : combos[i]) line += " --set " + shell_quote(s);
+      // Each swept value as a sweep of one value, not a --set: the run's bench.csv then
+      // names its settings in the `set` column, and --collect can tell the runs apart.
+      for (const auto& s : combos[i]) line += " --sweep " + shell_quote(s);
       if (o.threads > 0) line += " --threads " + std::to_string(o.threads);
       if (o.overwrite) line += " --overwrite";
       char run[32];
