@@ -266,6 +266,12 @@ std::vector<Case> cases() {
        1,
        {"--duration: expected a number > 0, got '-1'"}},
       {"unknown export format", {{"x.json", ok}}, {"simulate", "x.json", "--export", "pdf"}, 1, {"--export", "pdf"}},
+      // nlohmann keeps the last of duplicate keys: the override must refuse them as the file does.
+      {"duplicate key in a --set value",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", R"(solver={"type":"iisph","type":"wcsph"})"},
+       2,
+       {"sluice: scene error: --set solver=", "duplicate key \"type\" in the value; each key may appear only once"}},
       {"unknown flag", {{"x.json", ok}}, {"simulate", "x.json", "--frobnicate"}, 1, {"--frobnicate", "--help"}},
       {"missing scene argument",
        {},
