@@ -101,6 +101,8 @@ struct Case {
   bool writes_nothing = true;  // the working directory must be left exactly as it was
 };
 
+const std::string kRoot = std::string(SLUICE_SOURCE_DIR) + "/";
+
 std::vector<Case> cases() {
   const std::string ok = tiny();
   const std::string previous_summary = R"({"status": "completed"})";
@@ -272,6 +274,15 @@ std::vector<Case> cases() {
        {"simulate", "x.json", "-q", "--set", R"(solver={"type":"iisph","type":"wcsph"})"},
        2,
        {"sluice: scene error: --set solver=", "duplicate key \"type\" in the value; each key may appear only once"}},
+      {"validate dam-break too short to reach the first measured point",
+       {},
+       {"validate", "dam-break", "--scene", kRoot + "scenes/validation/dam_break_martin_moyce.json", "--spacing",
+        "0.05", "--set", "time.duration=0.1", "-o", "v"},
+       2,
+       {"/time/duration: the run ends at t = 0.1 s (T = 0.443), before the experiment's first measured point T = "
+        "0.832",
+        "so there is no front to measure; make it at least 0.188 s"},
+       false},
       {"unknown flag", {{"x.json", ok}}, {"simulate", "x.json", "--frobnicate"}, 1, {"--frobnicate", "--help"}},
       {"missing scene argument",
        {},
