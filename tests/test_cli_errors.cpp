@@ -854,6 +854,22 @@ TEST(RenderReliability, SignalsStopARenderAndKeepItsRecord) {
   }
 }
 
+// When WCSPH stops the elliptical drop (here its step, set too long for its acoustic
+// limit; IISPH takes it), the IISPH result computed before it is written, not lost.
+TEST(Reliability, EllipticalDropKeepsTheResultBeforeAFailure) {
+  CaseDir dir;
+  const Result r =
+      run_sluice(dir, {"validate", "elliptical-drop", "--scene", kRoot + "scenes/validation/elliptical_drop.json",
+                       "--spacing", "0.1", "--set", "time.dt=0.01", "--set", "solver.stiffness=1e6", "-o", "v"});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("acoustic limit"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("with the iisph run before wcsph stopped"), std::string::npos) << r.out;
+  const std::string csv = read_text(dir.work() / "v/elliptical_drop.csv");
+  EXPECT_NE(csv.find("\niisph,0.1,"), std::string::npos) << csv;
+  EXPECT_EQ(csv.find("wcsph"), std::string::npos) << csv;
+  EXPECT_NE(read_text(dir.work() / "v/elliptical_drop_axes.csv").find("\niisph,"), std::string::npos);
+}
+
 // 11: SIGTERM while ffmpeg encodes stops ffmpeg too (no orphan), removes its partial file
 // (each format's own temporary name), and the summary says "interrupted" with the
 // command that makes the video.

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
+#include <functional>
 #include <sstream>
 
 #include "analysis/elliptical_drop.h"
@@ -44,6 +46,24 @@ std::string number_text(double v) {
     if (std::strtod(buf, nullptr) == v) break;
   }
   return buf;
+}
+
+// Runs `f` when it goes out of scope, also when an exception leaves it.
+class ScopeExit {
+ public:
+  explicit ScopeExit(std::function<void()> f) : f_(std::move(f)) {}
+  ~ScopeExit() { f_(); }
+  ScopeExit(const ScopeExit&) = delete;
+  ScopeExit& operator=(const ScopeExit&) = delete;
+
+ private:
+  std::function<void()> f_;
+};
+
+std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : " and ") + n;
+  return out;
 }
 
 std::vector<std::string> solvers_of(const ValidateOptions& o) {
@@ -325,6 +345,26 @@ int validate_elliptical_drop(const ValidateOptions& o, const fs::path& dir) {
       "solver,spacing_m,particles,steps,avg_iterations,wall_s,t_end_s,a_sim_m,a_ode_m,b_sim_m,b_ode_m,a_error,b_error,"
       "bound,passed\n";
   int failed = 0;
+  std::vector<std::string> done;  // the solvers whose rows are in the CSV text
+  auto write_csvs = [&] {
+    write_file_atomic((dir / "elliptical_drop_axes.csv").string(), series);
+    write_file_atomic((dir / "elliptical_drop.csv").string(), summary);
+  };
+  // When a run fails (WCSPH after IISPH), the rows of those before it are written as the
+  // error leaves, not lost with it.
+  const int unwinding = std::uncaught_exceptions();
+  const ScopeExit keep_done([&] {
+    if (std::uncaught_exceptions() == unwinding || done.empty() || done.size() == solvers.size()) return;
+    try {
+      write_csvs();
+      std::printf("wrote %s, %s with the %s run before %s stopped\n", (dir / "elliptical_drop.csv").string().c_str(),
+                  (dir / "elliptical_drop_axes.csv").string().c_str(), join_names(done).c_str(),
+                  solvers[done.size()].c_str());
+      std::fflush(stdout);
+    } catch (const std::exception&) {
+      // the run's error is the one to report
+    }
+  });
   for (const auto& solver : solvers) {
     std::vector<std::string> base{"solver.type=" + solver};
     if (o.spacing > 0) base.push_back(number_override("spacing", o.spacing));
@@ -361,9 +401,9 @@ int validate_elliptical_drop(const ValidateOptions& o, const fs::path& dir) {
                   solver.c_str(), r.h, r.particles, r.steps, r.avg_iterations, r.wall_seconds, e.t, e.a_sim, e.a_ode,
                   e.b_sim, e.b_ode, r.a_error, r.b_error, bound, ok ? 1 : 0);
     summary += line;
+    done.push_back(solver);
   }
-  write_file_atomic((dir / "elliptical_drop_axes.csv").string(), series);
-  write_file_atomic((dir / "elliptical_drop.csv").string(), summary);
+  write_csvs();
   // Top: a(t) and b(t), the ODE as lines and each solver's measured axes as points.
   // Bottom: their signed relative errors against the bound.
   std::ostringstream gp;
