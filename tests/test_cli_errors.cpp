@@ -854,6 +854,43 @@ TEST(RenderReliability, SignalsStopARenderAndKeepItsRecord) {
   }
 }
 
+// A signal during time.settle is seen when the settling ends (the solver's constructor runs
+// it): the message says so, and why no checkpoint exists although --checkpoint-every was
+// given (checkpoints start at t = 0), instead of asking for --checkpoint-every N and
+// reporting "step 0, t = 0" as if the run had started.
+TEST(Reliability, SignalWhileSettlingSaysSo) {
+  CaseDir dir;
+  write_text(dir.work() / "x.json", tiny());
+  // 50 000 settling steps of 36 particles: a few seconds.
+  const pid_t pid = test::start_sluice(dir, {"simulate", "x.json", "-o", "out", "--checkpoint-every", "1", "--set",
+                                             "time.settle=5", "--set", "time.dt=1e-4"});
+  bool settling = false;
+  for (int i = 0; i < 6000 && !settling; ++i) {
+    settling = read_text(dir.base() / "stderr").find("settling for 5 s") != std::string::npos;
+    if (!settling) usleep(10000);
+  }
+  if (!settling) {
+    kill(pid, SIGKILL);
+    FAIL() << "no settling after 60 s: " << test::wait_sluice(dir, pid).err;
+  }
+  kill(pid, SIGINT);
+  const Result r = test::wait_sluice(dir, pid);
+  EXPECT_EQ(r.status, 130) << r.err;
+  const std::string last = r.err.substr(r.err.rfind("sluice:"));
+  for (const std::string f :
+       {"sluice: interrupted by SIGINT while settling (time.settle = 5 s, run to its end), before t = 0",
+        "stats.csv and summary.json are kept in out",
+        "no frame and no checkpoint was written (checkpoints start at t = 0, after settling); run again with "
+        "--overwrite"})
+    EXPECT_NE(last.find(f), std::string::npos) << "missing '" << f << "' in: " << r.err;
+  EXPECT_EQ(r.err.find("--checkpoint-every N"), std::string::npos) << r.err;
+  expect_no_partial_files(dir.work());
+  const auto summary = nlohmann::json::parse(read_text(dir.work() / "out/summary.json"));
+  EXPECT_EQ(summary["status"], "interrupted");
+  EXPECT_EQ(summary["interrupted"]["settling"], true);
+  EXPECT_EQ(summary["frames_written"], 0);
+}
+
 // When WCSPH stops the elliptical drop (here its step, set too long for its acoustic
 // limit; IISPH takes it), the IISPH result computed before it is written, not lost.
 TEST(Reliability, EllipticalDropKeepsTheResultBeforeAFailure) {

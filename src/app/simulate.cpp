@@ -183,6 +183,8 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     throw;
   }
   Simulation& sim = *built;
+  // The constructor runs time.settle to its end; a signal that came meanwhile is seen here.
+  const bool interrupted_settling = scene.time.settle > 0 && interrupt_signal() != 0;
   RunTotals totals;
   totals.initial_energy = sim.mechanical_energy();
   // Resumed: the checkpoint's state and totals, stats.csv cut back to its step, and its
@@ -268,8 +270,34 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     throw Interrupted(signal, message);
   };
 
+  // Stops before frame 0 when the signal came while settling. Checkpoints start at t = 0:
+  // the settled state is not one (a resumed run settles again from the scene), so none is
+  // written and the message says why rather than asking for --checkpoint-every.
+  auto stop_after_settling = [&] {
+    const int signal = interrupt_signal();
+    const bool resumable = control.resume.has_value();  // the earlier run's checkpoints
+    char where[160];
+    std::snprintf(where, sizeof where, "while settling (time.settle = %g s, run to its end), before t = 0",
+                  scene.time.settle);
+    const std::string how =
+        resumable ? "its checkpoints are kept; resume with: sluice " + control.command + " --resume " + dir.string()
+                  : "no frame and no checkpoint was written (checkpoints start at t = 0, after "
+                    "settling); run again with --overwrite";
+    const std::string message = "interrupted by " + signal_name(signal) + " " + where +
+                                "; stats.csv and summary.json are kept in " + dir.string() + "; " + how;
+    summary["interrupted"] = {
+        {"signal", signal_name(signal)},
+        {"step", sim.steps()},
+        {"time", sim.time()},
+        {"settling", true},
+        {"resume", resumable ? nlohmann::json(resume_command(control.command, dir)) : nlohmann::json(nullptr)}};
+    finish_files("interrupted", message);
+    throw Interrupted(signal, message);
+  };
+
   EtaEstimate eta_estimate;
   try {
+    if (interrupted_settling) stop_after_settling();
     on_frame(sim, sim.frame(), resumed);
     ++frames_done;
     eta_estimate.add(elapsed(), sim.time());
