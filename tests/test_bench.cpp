@@ -141,5 +141,22 @@ TEST(BenchCli, JobsRunsKeepTheirSettingsThroughCollect) {
   EXPECT_NE(lines[2].find(",\"solver.tolerance=0.01\","), std::string::npos) << lines[2];
 }
 
+// Values are split at top-level commas only: a JSON array is one value.
+TEST(BenchCli, SweepValuesSplitOutsideBrackets) {
+  CaseDir dir;
+  test::write_text(dir.work() / "tiny.json", kTinyScene);
+  const test::Result r = test::run_sluice(
+      dir, {"bench", "tiny.json", "--sweep", "solver.gravity=[0,-9.81],[0,-5]", "--jobs", "jobs.txt", "-o", "s"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::vector<std::string> lines = split(test::read_text(dir.work() / "jobs.txt"), '\n');
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_NE(lines[0].find("--sweep 'solver.gravity=[0,-9.81]'"), std::string::npos) << lines[0];
+  EXPECT_NE(lines[1].find("--sweep 'solver.gravity=[0,-5]'"), std::string::npos) << lines[1];
+  // A malformed --sweep is a flag mistake: exit 1, naming the flag.
+  const test::Result bad = test::run_sluice(dir, {"bench", "tiny.json", "--sweep", "solver.tolerance", "-o", "s"});
+  EXPECT_EQ(bad.status, 1) << bad.err;
+  EXPECT_EQ(bad.err.rfind("sluice: error: --sweep solver.tolerance: ", 0), 0u) << bad.err;
+}
+
 }  // namespace
 }  // namespace sluice

@@ -268,6 +268,12 @@ std::vector<Case> cases() {
        1,
        {"--duration: expected a number > 0, got '-1'"}},
       {"unknown export format", {{"x.json", ok}}, {"simulate", "x.json", "--export", "pdf"}, 1, {"--export", "pdf"}},
+      // A format given twice is the flag's mistake (exit 1, as above), not the scene's.
+      {"export format twice",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "--export", "csv,csv"},
+       1,
+       {"sluice: error: --export csv,csv: \"csv\" is given twice; each of csv, vtk at most once"}},
       // nlohmann keeps the last of duplicate keys: the override must refuse them as the file does.
       {"duplicate key in a --set value",
        {{"x.json", ok}},

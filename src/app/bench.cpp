@@ -100,7 +100,14 @@ int run_sweep(const BenchOptions& o) {
   if (o.scenes.size() != 1)
     throw view::FlagError("scenes", std::to_string(o.scenes.size()) + " given", "exactly one scene in sweep mode");
   std::vector<analysis::SweepAxis> axes;
-  for (const auto& s : o.sweep) axes.push_back(analysis::parse_sweep(s));
+  for (const auto& s : o.sweep) {
+    try {
+      axes.push_back(analysis::parse_sweep(s));
+    } catch (const SceneError& e) {
+      // A malformed --sweep is the flag's mistake, not the scene's (exit 1, as --export xyz).
+      throw view::FlagError("--sweep", s, e.what());
+    }
+  }
   const auto combos = analysis::sweep_combinations(axes);
   std::vector<std::string> common = o.set;
   if (o.duration > 0) common.push_back("time.duration=" + std::to_string(o.duration));

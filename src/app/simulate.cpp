@@ -102,6 +102,15 @@ void check_memory(const Scene& scene) {
 }
 
 std::string export_override(const std::vector<std::string>& formats) {
+  // A flag mistake, reported as one (exit 1, as --export xyz): as a scene override it would
+  // read as the scene file's duplicate output.export entry (exit 2).
+  std::string given;
+  for (const std::string& f : formats) given += (given.empty() ? "" : ",") + f;
+  for (std::size_t i = 0; i < formats.size(); ++i)
+    for (std::size_t k = 0; k < i; ++k)
+      if (formats[i] == formats[k])
+        throw view::FlagError("--export", given,
+                              "\"" + formats[i] + "\" is given twice; each of csv, vtk at most once");
   return "output.export=" + nlohmann::json(formats).dump();
 }
 
