@@ -158,5 +158,36 @@ TEST(BenchCli, SweepValuesSplitOutsideBrackets) {
   EXPECT_EQ(bad.err.rfind("sluice: error: --sweep solver.tolerance: ", 0), 0u) << bad.err;
 }
 
+// A flag that the chosen mode does not read is refused (it was silently ignored), and so
+// is an odd --end-to-end resolution with a hint that names only bench's own flags.
+TEST(BenchCli, FlagsTheModeDoesNotReadAreRefused) {
+  CaseDir dir;
+  test::write_text(dir.work() / "tiny.json", kTinyScene);
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"tiny.json", "--sweep", "solver.tolerance=0.1", "--steps", "5", "-o", "s"},
+       "--steps 5: bench --sweep does not read it"},
+      {{"--end-to-end", "tiny.json", "--sweep", "solver.tolerance=0.1", "-o", "e"},
+       "--sweep solver.tolerance=0.1: bench --end-to-end does not read it"},
+      {{"tiny.json", "--collect", "s", "-o", "c"}, "SCENE tiny.json: bench --collect merges the bench.csv files"},
+      {{"tiny.json", "--resolution", "64x64"}, "--resolution 64x64: bench SCENE... does not read it"},
+      {{"--end-to-end", "tiny.json", "--resolution", "321x180", "-o", "e"},
+       "--resolution 321x180: bench --end-to-end encodes H.264 (yuv420p), which needs even width and height, "
+       "e.g. 322x180"},
+  };
+  for (const auto& [args, fragment] : cases) {
+    SCOPED_TRACE(fragment);
+    std::vector<std::string> full = {"bench"};
+    full.insert(full.end(), args.begin(), args.end());
+    const test::Result r = test::run_sluice(dir, full);
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("sluice: error: " + fragment), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("--no-video"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("--format"), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(test::fs::exists(dir.work() / "s"));
+  EXPECT_FALSE(test::fs::exists(dir.work() / "e"));
+  EXPECT_FALSE(test::fs::exists(dir.work() / "c"));
+}
+
 }  // namespace
 }  // namespace sluice

@@ -188,6 +188,13 @@ int run_collect(const BenchOptions& o) {
 // simulation, so its time is not a share of the total; the run only waits png_wait_s.
 int run_end_to_end(const BenchOptions& o) {
   if (o.scenes.size() > 1) throw view::FlagError("scenes", o.scenes[1], "--end-to-end takes one scene");
+  // render would suggest --no-video or --format gif, which bench does not take.
+  int width = 0, height = 0;
+  view::parse_resolution(o.resolution, width, height);
+  if (width % 2 != 0 || height % 2 != 0)
+    throw view::FlagError("--resolution", o.resolution,
+                          "bench --end-to-end encodes H.264 (yuv420p), which needs even width and height, e.g. " +
+                              std::to_string(width + width % 2) + "x" + std::to_string(height + height % 2));
   RenderOptions r;
   r.scene = o.scenes.empty() ? "scenes/dam_break_130k.json" : o.scenes[0];
   r.output_dir = o.output_dir.empty() ? "renders/bench/end_to_end" : o.output_dir;
