@@ -101,6 +101,8 @@ struct Case {
   bool writes_nothing = true;  // the working directory must be left exactly as it was
 };
 
+const std::string kRoot = std::string(SLUICE_SOURCE_DIR) + "/";
+
 std::vector<Case> cases() {
   const std::string ok = tiny();
   const std::string previous_summary = R"({"status": "completed"})";
@@ -266,6 +268,40 @@ std::vector<Case> cases() {
        1,
        {"--duration: expected a number > 0, got '-1'"}},
       {"unknown export format", {{"x.json", ok}}, {"simulate", "x.json", "--export", "pdf"}, 1, {"--export", "pdf"}},
+      // A format given twice is the flag's mistake (exit 1, as above), not the scene's.
+      {"export format twice",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "--export", "csv,csv"},
+       1,
+       {"sluice: error: --export csv,csv: \"csv\" is given twice; each of csv, vtk at most once"}},
+      // nlohmann keeps the last of duplicate keys: the override must refuse them as the file does.
+      {"duplicate key in a --set value",
+       {{"x.json", ok}},
+       {"simulate", "x.json", "-q", "--set", R"(solver={"type":"iisph","type":"wcsph"})"},
+       2,
+       {"sluice: scene error: --set solver=", "duplicate key \"type\" in the value; each key may appear only once"}},
+      {"validate hydrostatic, unknown case",
+       {},
+       {"validate", "hydrostatic", "--case", "nosuch", "-o", "v"},
+       1,
+       {"--case nosuch: expected one of ", "iisph_solved", "wcsph_solved", "iisph_extrapolation", "wcsph_zero"},
+       false},
+      {"validate hydrostatic, a case of the other solver",
+       {},
+       {"validate", "hydrostatic", "--solver", "wcsph", "--case", "iisph_solved", "-o", "v"},
+       1,
+       {"--case iisph_solved: it is a case of iisph, and --solver wcsph leaves it out; drop --solver or choose a case "
+        "starting with wcsph_"},
+       false},
+      {"validate dam-break too short to reach the first measured point",
+       {},
+       {"validate", "dam-break", "--scene", kRoot + "scenes/validation/dam_break_martin_moyce.json", "--spacing",
+        "0.05", "--set", "time.duration=0.1", "-o", "v"},
+       2,
+       {"/time/duration: the run ends at t = 0.1 s (T = 0.443), before the experiment's first measured point T = "
+        "0.832",
+        "so there is no front to measure; make it at least 0.188 s"},
+       false},
       {"unknown flag", {{"x.json", ok}}, {"simulate", "x.json", "--frobnicate"}, 1, {"--frobnicate", "--help"}},
       {"missing scene argument",
        {},
@@ -835,6 +871,59 @@ TEST(RenderReliability, SignalsStopARenderAndKeepItsRecord) {
       EXPECT_EQ(nlohmann::json::parse(read_text(dir.work() / "out/summary.json"))["status"], "completed");
     }
   }
+}
+
+// A signal during time.settle is seen when the settling ends (the solver's constructor runs
+// it): the message says so, and why no checkpoint exists although --checkpoint-every was
+// given (checkpoints start at t = 0), instead of asking for --checkpoint-every N and
+// reporting "step 0, t = 0" as if the run had started.
+TEST(Reliability, SignalWhileSettlingSaysSo) {
+  CaseDir dir;
+  write_text(dir.work() / "x.json", tiny());
+  // 50 000 settling steps of 36 particles: a few seconds.
+  const pid_t pid = test::start_sluice(dir, {"simulate", "x.json", "-o", "out", "--checkpoint-every", "1", "--set",
+                                             "time.settle=5", "--set", "time.dt=1e-4"});
+  bool settling = false;
+  for (int i = 0; i < 6000 && !settling; ++i) {
+    settling = read_text(dir.base() / "stderr").find("settling for 5 s") != std::string::npos;
+    if (!settling) usleep(10000);
+  }
+  if (!settling) {
+    kill(pid, SIGKILL);
+    FAIL() << "no settling after 60 s: " << test::wait_sluice(dir, pid).err;
+  }
+  kill(pid, SIGINT);
+  const Result r = test::wait_sluice(dir, pid);
+  EXPECT_EQ(r.status, 130) << r.err;
+  const std::string last = r.err.substr(r.err.rfind("sluice:"));
+  for (const std::string f :
+       {"sluice: interrupted by SIGINT while settling (time.settle = 5 s, run to its end), before t = 0",
+        "stats.csv and summary.json are kept in out",
+        "no frame and no checkpoint was written (checkpoints start at t = 0, after settling); run again with "
+        "--overwrite"})
+    EXPECT_NE(last.find(f), std::string::npos) << "missing '" << f << "' in: " << r.err;
+  EXPECT_EQ(r.err.find("--checkpoint-every N"), std::string::npos) << r.err;
+  expect_no_partial_files(dir.work());
+  const auto summary = nlohmann::json::parse(read_text(dir.work() / "out/summary.json"));
+  EXPECT_EQ(summary["status"], "interrupted");
+  EXPECT_EQ(summary["interrupted"]["settling"], true);
+  EXPECT_EQ(summary["frames_written"], 0);
+}
+
+// When WCSPH stops the elliptical drop (here its step, set too long for its acoustic
+// limit; IISPH takes it), the IISPH result computed before it is written, not lost.
+TEST(Reliability, EllipticalDropKeepsTheResultBeforeAFailure) {
+  CaseDir dir;
+  const Result r =
+      run_sluice(dir, {"validate", "elliptical-drop", "--scene", kRoot + "scenes/validation/elliptical_drop.json",
+                       "--spacing", "0.1", "--set", "time.dt=0.01", "--set", "solver.stiffness=1e6", "-o", "v"});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("acoustic limit"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("with the iisph run before wcsph stopped"), std::string::npos) << r.out;
+  const std::string csv = read_text(dir.work() / "v/elliptical_drop.csv");
+  EXPECT_NE(csv.find("\niisph,0.1,"), std::string::npos) << csv;
+  EXPECT_EQ(csv.find("wcsph"), std::string::npos) << csv;
+  EXPECT_NE(read_text(dir.work() / "v/elliptical_drop_axes.csv").find("\niisph,"), std::string::npos);
 }
 
 // 11: SIGTERM while ffmpeg encodes stops ffmpeg too (no orphan), removes its partial file

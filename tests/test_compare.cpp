@@ -104,8 +104,8 @@ TEST(CompareCli, RegionsAreIgnored) {
   EXPECT_EQ(r.status, 1);
   expect_contains(r.out, "1 of 2500 pixels");
   expect_contains(r.out, "bounding box x = 70, y = 40, w = 1, h = 1");
-  // The whole image: nothing is compared, nothing differs.
-  EXPECT_EQ(compare(dir, {"--region", "0,0,100,50"}).status, 0);
+  // The whole image leaves nothing to compare: a usage error (IgnoringEveryPixelIsAUsageError).
+  EXPECT_EQ(compare(dir, {"--region", "0,0,100,50"}).status, 2);
 }
 
 TEST(CompareCli, MaskIgnoresItsNonBlackPixels) {
@@ -160,6 +160,46 @@ TEST(CompareCli, UsageErrorsExit2NamingTheFlagAndValue) {
     for (const std::string& f : fragments) expect_contains(r.err, f);
   }
   EXPECT_EQ(run_sluice(dir, {"compare", "a.png"}).status, 2) << "one image only";
+}
+
+// The diff image must not replace the mask either, however its path is spelled.
+TEST(CompareCli, DiffMustNotNameTheMask) {
+  CaseDir dir;
+  write_pair(dir);
+  Image mask(kW, kH);
+  mask.at(70, 40)[0] = 255;
+  render::write_png((dir.work() / "m.png").string(), mask);
+  const std::string before = test::read_text(dir.work() / "m.png");
+  for (const std::string diff : {"m.png", "./m.png"}) {
+    SCOPED_TRACE(diff);
+    const Result r = compare(dir, {"--mask", "m.png", "--diff", diff});
+    EXPECT_EQ(r.status, 2) << r.err;
+    expect_contains(r.err, "sluice: error: --diff " + diff + ": it names the mask m.png");
+    EXPECT_EQ(test::read_text(dir.work() / "m.png"), before) << "the mask was overwritten";
+  }
+}
+
+// Regions and a mask that leave nothing to compare would pass whatever the images hold.
+TEST(CompareCli, IgnoringEveryPixelIsAUsageError) {
+  CaseDir dir;
+  write_pair(dir);
+  Image white(kW, kH);
+  std::fill(white.rgb.begin(), white.rgb.end(), std::uint8_t{255});
+  render::write_png((dir.work() / "all.png").string(), white);
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--region", "0,0,100,50"}, "--region 0,0,100,50: they ignore all 100x50 pixels"},
+      {{"--region", "0,0,100,25", "--region", "0,25,100,25"}, "--region 0,0,100,25 0,25,100,25: they ignore all"},
+      {{"--mask", "all.png"}, "--mask all.png: they ignore all 100x50 pixels"},
+      {{"--mask", "all.png", "--region", "0,0,1,1"}, "--mask and --region all.png 0,0,1,1: they ignore all"},
+  };
+  for (const auto& [args, fragment] : cases) {
+    SCOPED_TRACE(fragment);
+    const Result r = compare(dir, args);
+    EXPECT_EQ(r.status, 2) << r.err;
+    expect_contains(r.err, fragment);
+    expect_contains(r.err, "which leaves nothing to compare");
+    EXPECT_EQ(r.out.find("0 of 0 pixels"), std::string::npos) << r.out;
+  }
 }
 
 TEST(CompareCli, UnreadableImagesExit3) {

@@ -32,6 +32,35 @@ const char* kHeader21 =
     "avg_density_error_percent,max_density_error_percent,ms_neighbors,ms_nonpressure,ms_pressure,ms_integrate,"
     "ms_total,ms_moving_boundaries,pareto";
 
+// The values of "V1,V2,...", split at the commas outside brackets, braces and quotes:
+// solver.gravity=[0,-9.81],[0,-5] is two values, each a JSON array.
+std::vector<std::string> split_values(const std::string& text) {
+  std::vector<std::string> values(1);
+  int depth = 0;
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '\\' && i + 1 < text.size()) {
+        values.back() += text.substr(i++, 2);  // an escaped quote does not end the string
+        continue;
+      }
+      if (c == '"') quoted = false;
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == '[' || c == '{') {
+      ++depth;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    } else if (c == ',' && depth == 0) {
+      values.emplace_back();
+      continue;
+    }
+    values.back() += c;
+  }
+  return values;
+}
+
 }  // namespace
 
 std::string SweepRun::label() const {
@@ -46,7 +75,7 @@ SweepAxis parse_sweep(const std::string& text) {
     throw SceneError("--sweep " + text + ": expected KEY=V1,V2,... (KEY as for --set, e.g. solver.type=iisph,wcsph)");
   SweepAxis a;
   a.key = text.substr(0, eq);
-  a.values = split(text.substr(eq + 1), ',');
+  a.values = split_values(text.substr(eq + 1));
   for (const auto& v : a.values)
     if (v.empty()) throw SceneError("--sweep " + text + ": an empty value; values are separated by single commas");
   return a;

@@ -10,7 +10,8 @@
 
 namespace sluice::analysis {
 
-// One swept scene value: `KEY=V1,V2,...` (KEY as for --set; values without commas).
+// One swept scene value: `KEY=V1,V2,...` (KEY as for --set; the values are split at the
+// commas outside [], {} and quotes, so a value may be a JSON array or object).
 struct SweepAxis {
   std::string key;
   std::vector<std::string> values;

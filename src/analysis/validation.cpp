@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <string>
 
 #include "solver/simulation.h"
 
@@ -12,6 +14,13 @@ namespace sluice::analysis {
 namespace {
 
 double gravity_magnitude(const Scene& scene) { return scene.solver.gravity.norm(); }
+
+// A number for a message, three significant digits.
+std::string num_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
 
 double max_speed(const Simulation& sim) {
   double v = 0;
@@ -196,6 +205,17 @@ DamBreakResult run_dam_break_front(const Scene& scene) {
                      std::to_string(experiment.back().second * r.a) + " m to compare all points");
 
   const double Tscale = std::sqrt(2 * g / r.a);
+  // A run that ends before the first measured time has no front to compare: every error
+  // would read nan. Said before the run, with the duration that compares every point.
+  const double t_first = experiment.front().first / Tscale, t_last = experiment.back().first / Tscale;
+  if (scene.time.duration < t_first)
+    throw SceneError(scene.file + ": /time/duration: the run ends at t = " + num_text(scene.time.duration) +
+                     " s (T = " + num_text(scene.time.duration * Tscale) +
+                     "), before the experiment's first measured point T = " + num_text(experiment.front().first) +
+                     " (t = " + num_text(t_first) + " s for this column, a = " + num_text(r.a) +
+                     " m), so there is no front to measure; make it at least " +
+                     num_text(std::ceil(t_first * 1000) / 1000) + " s (" + num_text(std::ceil(t_last * 1000) / 1000) +
+                     " s compares all " + std::to_string(experiment.size()) + " points)");
   const auto t0 = std::chrono::steady_clock::now();
   Simulation sim(scene);
   double iterations = 0;
@@ -235,6 +255,12 @@ DamBreakResult run_dam_break_front(const Scene& scene) {
     r.compared.push_back({T, Z, Zs, e});
     sum += e * e;
   }
+  if (r.compared.empty() && !r.front.empty())
+    throw SceneError(
+        scene.file + ": the surge front was recorded up to T = " + num_text(r.front.back().T) +
+        " (Z = " + num_text(r.front.back().Z) + ", the far wall at Z = " + num_text(r.wall_Z) +
+        "), and no two frames span the experiment's first measured point T = " + num_text(experiment.front().first) +
+        ", so there is no front to measure (/time/fps, /time/duration)");
   r.rms_relative_error = r.compared.empty() ? std::numeric_limits<double>::quiet_NaN()
                                             : std::sqrt(sum / static_cast<double>(r.compared.size()));
   return r;

@@ -106,7 +106,8 @@ struct DamBreakResult {
 
 // Runs the scene (one rectangular fluid block against the left wall of a long channel)
 // and compares its front with the experiment. Throws SceneError when the scene's fluid is
-// not one block or the channel is too short to reach any measured point.
+// not one block, the channel is too short to reach any measured point, or the run ends
+// (time.duration) before the first measured time: there would be no front to compare.
 DamBreakResult run_dam_break_front(const Scene& scene);
 
 }  // namespace sluice::analysis

@@ -12,6 +12,7 @@
 #include "analysis/plot.h"
 #include "analysis/sweep.h"
 #include "app/commands.h"
+#include "app/output_dir.h"
 #include "app/run.h"
 #include "io/output.h"
 #include "scene/scene.h"
@@ -66,6 +67,9 @@ std::string self_executable() {
   return ec ? std::string("sluice") : p.string();
 }
 
+// What a sweep or --collect writes into its directory.
+const std::vector<std::string> kSweepFiles = {"bench.csv", "bench.md", "bench.png", "bench.gp"};
+
 void print_sweep_header() {
   std::printf("%4s %-44s %-6s %5s %10s %7s %7s %10s %10s  %s\n", "run", "overrides", "solver", "stable", "s/sim_s",
               "steps", "iters", "avg_err_%", "max_err_%", "pareto");
@@ -96,7 +100,14 @@ int run_sweep(const BenchOptions& o) {
   if (o.scenes.size() != 1)
     throw view::FlagError("scenes", std::to_string(o.scenes.size()) + " given", "exactly one scene in sweep mode");
   std::vector<analysis::SweepAxis> axes;
-  for (const auto& s : o.sweep) axes.push_back(analysis::parse_sweep(s));
+  for (const auto& s : o.sweep) {
+    try {
+      axes.push_back(analysis::parse_sweep(s));
+    } catch (const SceneError& e) {
+      // A malformed --sweep is the flag's mistake, not the scene's (exit 1, as --export xyz).
+      throw view::FlagError("--sweep", s, e.what());
+    }
+  }
   const auto combos = analysis::sweep_combinations(axes);
   std::vector<std::string> common = o.set;
   if (o.duration > 0) common.push_back("time.duration=" + std::to_string(o.duration));
@@ -114,8 +125,11 @@ int run_sweep(const BenchOptions& o) {
     for (std::size_t i = 0; i < combos.size(); ++i) {
       std::string line = shell_quote(self_executable()) + " bench " + shell_quote(o.scenes[0]);
       for (const auto& s : common) line += " --set " + shell_quote(s);
-      for (const auto& s : combos[i]) line += " --set " + shell_quote(s);
+      // Each swept value as a sweep of one value, not a --set: the run's bench.csv then
+      // names its settings in the `set` column, and --collect can tell the runs apart.
+      for (const auto& s : combos[i]) line += " --sweep " + shell_quote(s);
       if (o.threads > 0) line += " --threads " + std::to_string(o.threads);
+      if (o.overwrite) line += " --overwrite";
       char run[32];
       std::snprintf(run, sizeof run, "run_%04zu", i + 1);
       line += " -o " + shell_quote((dir / run).string());
@@ -131,6 +145,8 @@ int run_sweep(const BenchOptions& o) {
     return 0;
   }
   make_directory(dir);
+  // Checked before the first run: a sweep may take hours before its first bench.csv.
+  refuse_previous_files(dir, kSweepFiles, o.overwrite);
   std::printf("sweep of %s: %zu runs, %d threads\n", o.scenes[0].c_str(), combos.size(), omp_get_max_threads());
   print_sweep_header();
   std::vector<analysis::SweepRun> runs;
@@ -157,6 +173,7 @@ int run_collect(const BenchOptions& o) {
   }
   const fs::path dir(o.output_dir);
   make_directory(dir);
+  refuse_previous_files(dir, kSweepFiles, o.overwrite);
   analysis::mark_pareto_front(runs);
   print_sweep_header();
   for (std::size_t i = 0; i < runs.size(); ++i) print_sweep_row(i, runs[i]);
@@ -171,6 +188,13 @@ int run_collect(const BenchOptions& o) {
 // simulation, so its time is not a share of the total; the run only waits png_wait_s.
 int run_end_to_end(const BenchOptions& o) {
   if (o.scenes.size() > 1) throw view::FlagError("scenes", o.scenes[1], "--end-to-end takes one scene");
+  // render would suggest --no-video or --format gif, which bench does not take.
+  int width = 0, height = 0;
+  view::parse_resolution(o.resolution, width, height);
+  if (width % 2 != 0 || height % 2 != 0)
+    throw view::FlagError("--resolution", o.resolution,
+                          "bench --end-to-end encodes H.264 (yuv420p), which needs even width and height, e.g. " +
+                              std::to_string(width + width % 2) + "x" + std::to_string(height + height % 2));
   RenderOptions r;
   r.scene = o.scenes.empty() ? "scenes/dam_break_130k.json" : o.scenes[0];
   r.output_dir = o.output_dir.empty() ? "renders/bench/end_to_end" : o.output_dir;
@@ -180,7 +204,9 @@ int run_end_to_end(const BenchOptions& o) {
   r.threads = o.threads;
   r.set = o.set;
   r.quiet = true;
-  r.overwrite = true;
+  // As for render: an earlier run's frames and exports in -o DIR go only with --overwrite.
+  r.overwrite = o.overwrite;
+  refuse_previous_files(r.output_dir, {"end_to_end.csv"}, o.overwrite);
   const auto t0 = std::chrono::steady_clock::now();
   run_render(r);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

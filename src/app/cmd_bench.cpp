@@ -1,9 +1,52 @@
 // `sluice bench`: its flags; the runs are run_bench (app/bench.cpp).
+#include <algorithm>
 #include <memory>
 
 #include "app/cli.h"
 
 namespace sluice::app {
+
+namespace {
+
+// bench has four modes (run_bench); a flag that the chosen mode does not read would be
+// silently ignored, so it is refused, naming the mode and the flags it takes.
+void check_mode_flags(const CLI::App& cmd, const BenchOptions& o) {
+  const bool sweep = !o.sweep.empty() || !o.output_dir.empty() || !o.jobs.empty() || o.duration > 0;
+  std::string mode;
+  std::vector<std::string> takes;
+  if (o.end_to_end) {
+    mode = "--end-to-end";
+    takes = {"scenes",   "--end-to-end", "--duration", "--fps",      "--resolution",
+             "--output", "--threads",    "--set",      "--overwrite"};
+  } else if (!o.collect.empty()) {
+    mode = "--collect";
+    takes = {"--collect", "--output", "--threads", "--overwrite"};
+  } else if (sweep) {
+    mode = "--sweep";  // also -o, --jobs or --duration alone: a sweep of one run
+    takes = {"scenes", "--sweep", "--duration", "--output", "--jobs", "--set", "--threads", "--overwrite"};
+  } else {
+    mode = "SCENE...";
+    takes = {"scenes", "--steps", "--repeat", "--threads", "--set", "--csv", "--brute-force"};
+  }
+  for (const CLI::Option* opt : cmd.get_options()) {
+    const std::string name = opt->get_name();
+    if (opt->count() == 0 || name == "--help" || std::find(takes.begin(), takes.end(), name) != takes.end()) continue;
+    std::string value;
+    for (const std::string& r : opt->results()) value += (value.empty() ? "" : ",") + r;
+    std::string list;
+    for (const std::string& t : takes)
+      list += (list.empty() ? "" : ", ") + (t == "scenes" ? std::string("SCENE") : t == "--output" ? "-o" : t);
+    const std::string shown = name == "scenes" ? "SCENE" : name == "--output" ? "-o" : name;
+    std::string why = "bench " + mode + " does not read it (it takes " + list + ")";
+    if (name == "--steps" && mode == "--sweep")
+      why += "; each run goes to the scene's duration: shorten it with --duration S";
+    if (name == "scenes" && mode == "--collect")
+      why = "bench --collect merges the bench.csv files of directories and runs no scene";
+    throw view::FlagError(shown, value, why);
+  }
+}
+
+}  // namespace
 
 Command add_bench(CLI::App& app) {
   auto bench = std::make_shared<BenchOptions>();
@@ -30,7 +73,12 @@ Command add_bench(CLI::App& app) {
   benchcmd->add_option("--fps", bench->fps, "End-to-end: frames per second (default 60)")->check(positive_check());
   benchcmd->add_option("--resolution", bench->resolution, "End-to-end: WxH (default 1920x1080)");
   benchcmd->add_option("--collect", bench->collect, "Merge the bench.csv of these directories into -o DIR")->take_all();
-  return {benchcmd, [bench] { return run_bench(*bench); }};
+  benchcmd->add_flag("--overwrite", bench->overwrite,
+                     "Sweep, --collect, --end-to-end: replace an earlier run's files in the output directory");
+  return {benchcmd, [bench, benchcmd] {
+            check_mode_flags(*benchcmd, *bench);
+            return run_bench(*bench);
+          }};
 }
 
 }  // namespace sluice::app

@@ -37,6 +37,7 @@ struct BenchOptions {
   std::string output_dir;            // default renders/bench/<scene name>
   std::string jobs;                  // write the runs' command lines here instead of running them
   std::vector<std::string> collect;  // merge the bench.csv files of these directories
+  bool overwrite = false;            // replace an earlier bench.csv (sweep, --collect) or run (--end-to-end)
   // End-to-end mode: `render` of one scene (default scenes/dam_break_130k.json) timed as a
   // whole and split (simulation, drawing, PNG, video); end_to_end.csv in `output_dir`
   // (default renders/bench/end_to_end). duration 0: 5 s.

@@ -1,10 +1,12 @@
 // `sluice compare A.png B.png`: pixel comparison of two images for image regression in CI,
 // with presets, ignored regions and a report of where the images differ.
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/commands.h"
@@ -85,13 +87,17 @@ CompareRule rule_of(const CompareOptions& o) {
   return r;
 }
 
-// The diff image must not replace an input (compare --diff A.png A.png B.png) nor be a folder.
+// The diff image must not replace an input (compare --diff A.png A.png B.png), the mask
+// included, nor be a folder. equivalent() sees through links and other spellings of a path.
 void check_diff_path(const CompareOptions& o) {
   if (o.diff.empty()) return;
   std::error_code ec;
-  for (const std::string& in : {o.a, o.b})
-    if (fs::equivalent(o.diff, in, ec))
-      throw FlagError("--diff", o.diff, "it names the input image " + in + "; choose another path for the diff image");
+  const std::pair<const std::string*, const char*> inputs[] = {
+      {&o.a, "input image "}, {&o.b, "input image "}, {&o.mask, "mask "}};
+  for (const auto& [in, what] : inputs)
+    if (!in->empty() && fs::equivalent(o.diff, *in, ec))
+      throw FlagError("--diff", o.diff,
+                      "it names the " + std::string(what) + *in + "; choose another path for the diff image");
   if (fs::is_directory(o.diff, ec))
     throw FlagError("--diff", o.diff, "is a directory; --diff takes the PNG file to write");
 }
@@ -126,6 +132,15 @@ int run_compare(const CompareOptions& o) {
     return kCompareSize;
   }
   const PixelMask ignore = ignored_pixels(o, regions, a);
+  // Nothing left to compare would pass ("0 of 0 pixels") whatever the images hold.
+  if (!ignore.empty() && std::find(ignore.begin(), ignore.end(), 0) == ignore.end()) {
+    const std::string flags = o.mask.empty() ? "--region" : o.regions.empty() ? "--mask" : "--mask and --region";
+    std::string value = o.mask;
+    for (const std::string& r : o.regions) value += (value.empty() ? "" : " ") + r;
+    throw FlagError(flags, value,
+                    "they ignore all " + std::to_string(a.width) + "x" + std::to_string(a.height) +
+                        " pixels of the images, which leaves nothing to compare; ignore less");
+  }
   const CompareResult r = render::compare_images(a, b, rule.tolerance, rule.max_fraction, ignore);
   print_report(o, rule, r);
   if (!o.diff.empty() && r.differing > 0) {

@@ -128,4 +128,19 @@ void prepare_output_directory(const fs::path& dir, bool overwrite, const std::st
   for (const std::string& name : found) remove_previous(dir / name);
 }
 
+void refuse_previous_files(const fs::path& dir, const std::vector<std::string>& names, bool overwrite) {
+  std::vector<std::string> found;
+  std::error_code ec;
+  for (const std::string& name : names)
+    if (fs::exists(fs::symlink_status(dir / name, ec))) found.push_back(name);
+  if (found.empty()) return;
+  if (!overwrite) {
+    std::string list;
+    for (const std::string& name : found) list += (list.empty() ? "" : ", ") + name;
+    throw OutputError(dir.string() + ": output directory holds a previous run (" + list +
+                      "); pass --overwrite to replace it, or choose another directory with -o");
+  }
+  for (const std::string& name : found) remove_entry(dir / name);
+}
+
 }  // namespace sluice::app

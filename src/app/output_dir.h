@@ -22,4 +22,10 @@ std::vector<std::string> previous_run_files(const std::string& scene_name);
 void prepare_output_directory(const std::filesystem::path& dir, bool overwrite, const std::string& scene_name,
                               const std::string& input = "");
 
+// The files a command other than simulate/render (bench) writes straight into `dir`: when
+// any of `names` exists there, throws OutputError naming the directory, the files and
+// --overwrite, or with `overwrite` removes them (a stale bench.png must not outlive its
+// table). Throws OutputError.
+void refuse_previous_files(const std::filesystem::path& dir, const std::vector<std::string>& names, bool overwrite);
+
 }  // namespace sluice::app

@@ -54,7 +54,7 @@ struct FrameOutput {
 };
 
 // `--export csv,vtk` as a scene override: it replaces output.export, so that the run
-// exports what summary.json's parameters say.
+// exports what summary.json's parameters say. A format given twice: FlagError.
 std::string export_override(const std::vector<std::string>& formats);
 
 // The scene's output.export into DIR/particles. For a resumed run, the frames from

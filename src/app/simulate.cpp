@@ -102,6 +102,15 @@ void check_memory(const Scene& scene) {
 }
 
 std::string export_override(const std::vector<std::string>& formats) {
+  // A flag mistake, reported as one (exit 1, as --export xyz): as a scene override it would
+  // read as the scene file's duplicate output.export entry (exit 2).
+  std::string given;
+  for (const std::string& f : formats) given += (given.empty() ? "" : ",") + f;
+  for (std::size_t i = 0; i < formats.size(); ++i)
+    for (std::size_t k = 0; k < i; ++k)
+      if (formats[i] == formats[k])
+        throw view::FlagError("--export", given,
+                              "\"" + formats[i] + "\" is given twice; each of csv, vtk at most once");
   return "output.export=" + nlohmann::json(formats).dump();
 }
 
@@ -183,6 +192,8 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     throw;
   }
   Simulation& sim = *built;
+  // The constructor runs time.settle to its end; a signal that came meanwhile is seen here.
+  const bool interrupted_settling = scene.time.settle > 0 && interrupt_signal() != 0;
   RunTotals totals;
   totals.initial_energy = sim.mechanical_energy();
   // Resumed: the checkpoint's state and totals, stats.csv cut back to its step, and its
@@ -268,8 +279,34 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     throw Interrupted(signal, message);
   };
 
+  // Stops before frame 0 when the signal came while settling. Checkpoints start at t = 0:
+  // the settled state is not one (a resumed run settles again from the scene), so none is
+  // written and the message says why rather than asking for --checkpoint-every.
+  auto stop_after_settling = [&] {
+    const int signal = interrupt_signal();
+    const bool resumable = control.resume.has_value();  // the earlier run's checkpoints
+    char where[160];
+    std::snprintf(where, sizeof where, "while settling (time.settle = %g s, run to its end), before t = 0",
+                  scene.time.settle);
+    const std::string how =
+        resumable ? "its checkpoints are kept; resume with: sluice " + control.command + " --resume " + dir.string()
+                  : "no frame and no checkpoint was written (checkpoints start at t = 0, after "
+                    "settling); run again with --overwrite";
+    const std::string message = "interrupted by " + signal_name(signal) + " " + where +
+                                "; stats.csv and summary.json are kept in " + dir.string() + "; " + how;
+    summary["interrupted"] = {
+        {"signal", signal_name(signal)},
+        {"step", sim.steps()},
+        {"time", sim.time()},
+        {"settling", true},
+        {"resume", resumable ? nlohmann::json(resume_command(control.command, dir)) : nlohmann::json(nullptr)}};
+    finish_files("interrupted", message);
+    throw Interrupted(signal, message);
+  };
+
   EtaEstimate eta_estimate;
   try {
+    if (interrupted_settling) stop_after_settling();
     on_frame(sim, sim.frame(), resumed);
     ++frames_done;
     eta_estimate.add(elapsed(), sim.time());

@@ -2,6 +2,7 @@
 #include "scene/overrides.h"
 
 #include <algorithm>
+#include <set>
 #include <sstream>
 
 #include "scene/json_reader.h"
@@ -52,8 +53,24 @@ void apply_override(json& root, const std::string& text, std::vector<std::string
   for (const auto& p : parts)
     if (p.empty()) fail("empty path component; expected e.g. solver.tolerance or /solver/tolerance");
 
-  json value = json::parse(value_text, nullptr, /*allow_exceptions=*/false);
-  if (value.is_discarded()) value = value_text;  // not JSON: a plain string such as wcsph
+  // nlohmann keeps the last of duplicate keys; a scene file refuses them (parse_json), and
+  // so does an override: {"type":"iisph","type":"wcsph"} must not run WCSPH quietly.
+  std::vector<std::set<std::string>> open;  // the keys of each open object (arrays: none)
+  std::string duplicate;
+  auto track = [&](int, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::object_start || event == json::parse_event_t::array_start) open.emplace_back();
+    if ((event == json::parse_event_t::object_end || event == json::parse_event_t::array_end) && !open.empty())
+      open.pop_back();
+    if (event == json::parse_event_t::key && !open.empty() && !open.back().insert(parsed.get<std::string>()).second &&
+        duplicate.empty())
+      duplicate = parsed.get<std::string>();
+    return true;
+  };
+  json value = json::parse(value_text, track, /*allow_exceptions=*/false);
+  if (value.is_discarded())
+    value = value_text;  // not JSON: a plain string such as wcsph
+  else if (!duplicate.empty())
+    fail("duplicate key \"" + duplicate + "\" in the value; each key may appear only once");
 
   // Walk the path first: json_pointer would make a null into an array for a numeric key,
   // resize an array for any index and throw its own messages; here a null becomes an
