@@ -104,8 +104,7 @@ Candidate try_devices(const char* client_ext, std::vector<std::string>& tried) {
   // EGL_EXT_device_base is the older name of device_enumeration + device_query, and the one
   // some NVIDIA drivers advertise.
   if (!has_extension(client_ext, "EGL_EXT_platform_device") ||
-      !(has_extension(client_ext, "EGL_EXT_device_enumeration") ||
-        has_extension(client_ext, "EGL_EXT_device_base"))) {
+      !(has_extension(client_ext, "EGL_EXT_device_enumeration") || has_extension(client_ext, "EGL_EXT_device_base"))) {
     tried.push_back(std::string("device: EGL_EXT_platform_device with EGL_EXT_device_enumeration (or _base) not "
                                 "supported by this libEGL (its client extensions: ") +
                     (client_ext ? client_ext : "none") + ")");
