@@ -3,6 +3,8 @@
 // where a flag has them, and scene files that exist.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <regex>
 #include <set>
 
@@ -32,8 +34,8 @@ std::vector<std::string> split_words(const std::string& s) {
   return w;
 }
 
-// Lines of fenced code blocks that start with `build/sluice ` or `sluice `, with their
-// `\` continuations joined.
+// Lines of fenced code blocks that start with `build/sluice ` or `sluice ` (or run it
+// after `&& `, as the README's first command does), with their `\` continuations joined.
 std::vector<Command> commands_in(const std::string& file) {
   std::istringstream in(test::read_text(kRoot + file));
   std::vector<Command> out;
@@ -50,7 +52,8 @@ std::vector<Command> commands_in(const std::string& file) {
     } else {
       const auto first = line.find_first_not_of(' ');
       if (first == std::string::npos) continue;
-      const std::string t = line.substr(first);
+      std::string t = line.substr(first);
+      if (const auto chained = t.find("&& build/sluice "); chained != std::string::npos) t = t.substr(chained + 3);
       if (!t.starts_with("build/sluice ") && !t.starts_with("sluice ")) continue;
       pending = t;
     }
@@ -193,6 +196,133 @@ TEST(Docs, CheckRejectsWhatTheProgramWould) {
   EXPECT_EQ(problems("sluice simulate scenes/dam_break.json --export csv,pdf"), 1u);
   EXPECT_EQ(problems("sluice render scenes/dam_break.json --color-by speed,cfl"), 1u);
 }
+
+// --- the README's commands, run ------------------------------------------------------
+
+// The words of a command as a shell passes them: "..." and '...' hold spaces, and a word
+// starting with # ends the command.
+std::vector<std::string> shell_words(const std::string& s) {
+  std::vector<std::string> w;
+  std::string cur;
+  bool in_word = false;
+  char quote = 0;
+  for (char ch : s) {
+    if (quote) {
+      if (ch == quote)
+        quote = 0;
+      else
+        cur += ch;
+    } else if (ch == '"' || ch == '\'') {
+      quote = ch;
+      in_word = true;
+    } else if (ch == ' ' || ch == '\t') {
+      if (in_word) w.push_back(cur);
+      cur.clear();
+      in_word = false;
+    } else if (ch == '#' && !in_word) {
+      break;
+    } else {
+      cur += ch;
+      in_word = true;
+    }
+  }
+  if (in_word) w.push_back(cur);
+  return w;
+}
+
+// A README command and the arguments appended to it to make it short: a coarser spacing,
+// a shorter duration, a smaller frame. They change how long it runs, not which code runs.
+struct Shortened {
+  std::string shown;  // as the README shows it, without "build/sluice " and comments
+  std::vector<std::string> extra;
+  // A validation's verdict on a shortened run (exit 1: a row outside bounds meant for its
+  // full length) is no failure here; a scene, flag or output error or an instability is.
+  bool verdict_may_fail = false;
+};
+
+// The README's commands that make the program render (EGL: suite Render*), in its order.
+const std::vector<Shortened> kReadmeRendering = {
+    {"render scenes/dam_break.json", {"--duration", "0.1", "--set", "spacing=0.04"}},
+    {"render scenes/first_scene.json", {"--duration", "0.1"}},
+    {"still scenes/first_scene.json --time 1.2 -o first.png", {"--set", "spacing=0.04"}},
+    {"render scenes/rotor.json --color-by speed --resolution 1920x1080",
+     {"--duration", "0.05", "--set", "spacing=0.03"}},
+    {"still scenes/dam_break.json --time 0.8 --color-by pressure -o fig.png", {"--set", "spacing=0.04"}},
+    {"montage scenes/hydrostatic.json --times 0.5,3 --color-by pressure --vary "
+     "solver.boundary_pressure=solved,extrapolation --title \"Boundary pressure\" -o grid.png",
+     {"--set", "spacing=0.04"}},
+    {"render scenes/paddle.json --export csv,vtk", {"--duration", "0.05", "--set", "spacing=0.04"}},
+    {"bench --end-to-end", {"--duration", "0.05", "--fps", "20", "--resolution", "320x180", "--set", "spacing=0.02"}},
+    // The run of the first command above.
+    {"figures run renders/dam_break", {}},
+    {"still scenes/dam_break.json --time 0.5 -o actual.png", {"--set", "spacing=0.04"}},
+    // The golden image is the one just made (the README keeps it in the repository).
+    {"compare golden.png actual.png --preset tests --region 0,0,1280,32 --diff diff.png", {}},
+};
+
+// The README's other commands, in its order.
+const std::vector<Shortened> kReadmeOthers = {
+    {"simulate scenes/paddle.json --export vtk", {"--duration", "0.05", "--set", "spacing=0.04"}},
+    {"bench scenes/dam_break.json --steps 300", {"--set", "spacing=0.04"}},
+    {"bench scenes/dam_break.json --duration 1 --sweep time.dt=2.5e-4,5e-4,1e-3", {"--set", "spacing=0.04"}},
+    {"validate hydrostatic", {"--set", "spacing=0.02", "time.settle=0.1", "time.duration=0.6"}, true},
+    {"suite --short", {"--case", "jet"}},
+};
+
+// The README's commands as run here: "build/sluice " and comments dropped, words joined.
+std::vector<std::string> readme_commands() {
+  std::vector<std::string> out;
+  for (const Command& c : commands_in("README.md")) {
+    std::vector<std::string> w = shell_words(c.text);
+    w.erase(w.begin());
+    std::string text;
+    for (const auto& x : w) text += (text.empty() ? "" : " ") + (x.find(' ') != std::string::npos ? '"' + x + '"' : x);
+    out.push_back(text);
+  }
+  return out;
+}
+
+// Runs `commands` in one case folder that holds the shipped scenes (as the README's
+// commands, run from the repository root, see them); each must exit 0.
+void run_readme_commands(const std::vector<Shortened>& commands) {
+  const std::vector<std::string> shown = readme_commands();
+  CaseDir dir;
+  std::filesystem::create_directory_symlink(kRoot + "scenes", dir.work() / "scenes");
+  for (const Shortened& c : commands) {
+    EXPECT_NE(std::find(shown.begin(), shown.end(), c.shown), shown.end())
+        << "not a command of README.md (update the list in tests/test_docs.cpp): " << c.shown;
+    if (c.shown.starts_with("compare golden.png"))
+      std::filesystem::copy_file(dir.work() / "actual.png", dir.work() / "golden.png");
+    std::vector<std::string> args = shell_words(c.shown);
+    args.insert(args.end(), c.extra.begin(), c.extra.end());
+    const auto t0 = std::chrono::steady_clock::now();
+    const test::Result r = run_sluice(dir, args);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf("[ measured ] %5.1f s  %s\n", s, c.shown.c_str());
+    if (c.verdict_may_fail && r.status == 1 && r.out.find("FAILED") != std::string::npos) continue;
+    EXPECT_EQ(r.status, 0) << c.shown << "\n" << r.err << r.out.substr(r.out.size() > 2000 ? r.out.size() - 2000 : 0);
+  }
+}
+
+// Every command the README shows is run by one of the two tests below.
+TEST(Docs, EveryReadmeCommandIsRun) {
+  const std::vector<std::string> shown = readme_commands();
+  EXPECT_GE(shown.size(), 15u) << "the check found almost no commands in README.md";
+  for (const std::string& c : shown) {
+    auto listed = [&](const std::vector<Shortened>& list) {
+      return std::any_of(list.begin(), list.end(), [&](const Shortened& x) { return x.shown == c; });
+    };
+    EXPECT_TRUE(listed(kReadmeRendering) || listed(kReadmeOthers))
+        << "README.md shows a command no test runs (add it to a list in tests/test_docs.cpp): " << c;
+  }
+}
+
+// The README's commands that do not render, shortened; each exits 0 (or gives its
+// verdict, for the validation).
+TEST(Docs, ReadmeCommandsRun) { run_readme_commands(kReadmeOthers); }
+
+// The README's commands that render, shortened; each exits 0.
+TEST(RenderDocs, ReadmeCommandsRun) { run_readme_commands(kReadmeRendering); }
 
 }  // namespace
 }  // namespace sluice

@@ -3,8 +3,10 @@
 // as `sluice validate elliptical-drop` runs it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "analysis/elliptical_drop.h"
 #include "scene/scene.h"
@@ -98,6 +100,28 @@ TEST(EllipticalDrop, Wcsph) {
   const auto w = analysis::elliptical_drop_wcsph_overrides(base, analysis::kEllipticalDropA0);
   set.insert(set.end(), w.begin(), w.end());
   check_drop(analysis::run_elliptical_drop(load_scene(kScene, set), analysis::kEllipticalDropA0), "wcsph");
+}
+
+// The drop's motion is part of the scene it is loaded as (elliptical_drop_velocity), so
+// that WCSPH's default stiffness sees it: k = rho0 (20 v0)^2 with v0 the rim's A0 R0
+// (solver/setup.h). Loaded without it, the drop has neither gravity nor motion and WCSPH
+// has no default (what `validate elliptical-drop` stopped on).
+TEST(EllipticalDrop, WcsphDefaultStiffnessSeesTheDropsMotion) {
+  std::vector<std::string> set = kShort;
+  set.push_back("solver.type=wcsph");
+  EXPECT_THROW(load_scene(kScene, set), SceneError);
+  const Scene s = load_scene(kScene, set, analysis::elliptical_drop_velocity(analysis::kEllipticalDropA0));
+  double v0 = 0;
+  for (const Vec2& v : s.fluid_v) v0 = std::max(v0, v.norm());
+  EXPECT_GT(v0, 0.9);
+  EXPECT_LE(v0, 1.0);
+  EXPECT_DOUBLE_EQ(s.solver.stiffness, s.solver.rest_density * (20 * v0) * (20 * v0));
+  // The same field the run starts from: the scene's velocities are kept as they are.
+  const Scene plain = load_scene(kScene, kShort);
+  Scene replaced = plain;
+  analysis::elliptical_drop_velocity(analysis::kEllipticalDropA0)(replaced.fluid_x, replaced.fluid_v);
+  ASSERT_EQ(replaced.fluid_v.size(), s.fluid_v.size());
+  for (std::size_t i = 0; i < s.fluid_v.size(); ++i) EXPECT_EQ(replaced.fluid_v[i], s.fluid_v[i]) << i;
 }
 
 TEST(EllipticalDrop, RefusesANonPositiveStrainRate) {

@@ -396,6 +396,18 @@ TEST(SceneOverrides, ChangeValues) {
   const Scene a = parse_scene(scene_with(R"("time": {"dt": 1e-3},)"), kFile, {"time.dt=null", "time.cfl=0.5"});
   EXPECT_EQ(a.time.dt, 0.0);
   EXPECT_EQ(a.time.cfl, 0.5);
+  // An override of one of dt and cfl replaces the file's other (`bench --sweep time.dt=...`
+  // on a scene with a cfl); both in one override, or both overridden, stay a mistake.
+  const Scene fixed = parse_scene(scene_with(R"("time": {"cfl": 1.0},)"), kFile, {"time.dt=2.5e-4"});
+  EXPECT_EQ(fixed.time.dt, 2.5e-4);
+  EXPECT_TRUE(fixed.resolved["time"]["cfl"].is_null());
+  const Scene adaptive = parse_scene(scene_with(R"("time": {"dt": 1e-3},)"), kFile, {"time.cfl=0.5"});
+  EXPECT_EQ(adaptive.time.dt, 0.0);
+  EXPECT_EQ(adaptive.time.cfl, 0.5);
+  EXPECT_NE(error_of(scene_with(""), {R"(time={"dt": 1e-3, "cfl": 0.4})"}).find("/time: both dt and cfl are given"),
+            std::string::npos);
+  EXPECT_NE(error_of(scene_with(""), {"time.dt=1e-3", "time.cfl=0.4"}).find("/time: both dt and cfl are given"),
+            std::string::npos);
   // The index equal to an array's size appends.
   const Scene b = parse_scene(text, kFile, {R"(fluid.1={"shape": "rectangle", "min": [2, 0], "max": [3, 1]})"});
   EXPECT_EQ(b.fluid_x.size(), 200u);

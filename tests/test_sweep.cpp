@@ -2,12 +2,15 @@
 // --collect, and runs that do not depend on the sweep's order.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "analysis/sweep.h"
 #include "io/csv.h"
-#include "temp_dir.h"
+#include "test_process.h"
 #include "test_util.h"
 
 namespace sluice {
@@ -133,6 +136,104 @@ TEST(Sweep, RunsDoNotDependOnOrder) {
   EXPECT_EQ(a1.steps, a2.steps);
   EXPECT_GT(b1.steps, a1.steps);
   EXPECT_TRUE(a1.stable && b1.stable);
+}
+
+// A settle with a fixed step that does not divide its time in floating point (4000 x
+// 2.5e-4 s falls 1e-13 s short of 1 s) ends without a last sliver of a step, whose dt^2
+// in the pressure solve blew the fluid up (`bench --sweep time.dt=2.5e-4,...` on every
+// shipped scene with a settle).
+TEST(Sweep, FixedStepSettleEndsWithoutASliverStep) {
+  const char* json = R"({"spacing": 0.05, "time": {"duration": 0.01, "dt": 2.5e-4, "settle": 1},
+    "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}],
+    "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.5, 0.5]}]})";
+  const std::vector<std::string> set{"solver.type=iisph"};
+  const auto r = analysis::run_sweep_point(test::scene_from_json(json, set), set);
+  EXPECT_TRUE(r.stable) << r.message;
+  EXPECT_EQ(r.steps, 40);
+}
+
+// A run whose settle goes unstable is recorded like one that goes unstable later, not
+// thrown out of the sweep.
+TEST(Sweep, UnstableSettleIsRecorded) {
+  const char* json = R"({"spacing": 0.05, "time": {"duration": 0.01, "dt": 0.05, "settle": 1},
+    "stability": {"max_error_percent": 1e-6},
+    "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.3, 0.3]}],
+    "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.5, 0.5]}]})";
+  const std::vector<std::string> set;
+  analysis::SweepRun r;
+  ASSERT_NO_THROW(r = analysis::run_sweep_point(test::scene_from_json(json, set), set));
+  EXPECT_FALSE(r.stable);
+  EXPECT_NE(r.message.find("settling"), std::string::npos) << r.message;
+  EXPECT_EQ(r.simulated, 0.0);
+}
+
+// --- the program's sweeps, run as a process -------------------------------------------
+
+const std::string kRoot = std::string(SLUICE_SOURCE_DIR) + "/";
+
+// `bench --sweep solver.type=iisph,wcsph` on the column (a fixed 0.5 ms, IISPH's): IISPH
+// keeps the scene's step, WCSPH, above its acoustic limit with it, takes the adaptive one
+// and says so; bench.csv gives each run's step and the overrides it ran with.
+TEST(SweepCommand, SolverSweepGivesEachSolverItsStep) {
+  test::CaseDir dir;
+  const test::Result r = test::run_sluice(dir, {"bench", kRoot + "scenes/column.json", "--sweep",
+                                                "solver.type=iisph,wcsph", "--duration", "0.02", "-o", "out"});
+  ASSERT_EQ(r.status, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("run 2: the scene's time.dt 0.0005 s exceeds WCSPH's acoustic limit"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("avg_dt_s"), std::string::npos) << r.out;
+  const io::CsvTable t = io::read_csv_table((dir.work() / "out" / "bench.csv").string());
+  ASSERT_EQ(t.rows.size(), 2u);
+  const int set = t.column("set"), dt = t.column("avg_dt_s"), stable = t.column("stable");
+  EXPECT_EQ(t.rows[0][set], "solver.type=iisph");
+  EXPECT_EQ(t.rows[1][set], "solver.type=wcsph;time.dt=null");
+  EXPECT_NEAR(std::stod(t.rows[0][dt]), 5e-4, 1e-5);
+  EXPECT_LT(std::stod(t.rows[1][dt]), 6.4e-5);  // 0.4 h / c, c = 20 sqrt(g H) = 62.6 m/s
+  EXPECT_EQ(t.rows[0][stable], "1");
+  EXPECT_EQ(t.rows[1][stable], "1");
+}
+
+// A step the user gives is used as given: every run takes it, and WCSPH refuses one above
+// its acoustic limit with the scene error that names it.
+TEST(SweepCommand, SolverSweepKeepsAStepTheUserSets) {
+  test::CaseDir dir;
+  const std::string column = kRoot + "scenes/column.json";
+  const test::Result ok = test::run_sluice(dir, {"bench", column, "--sweep", "solver.type=iisph,wcsph", "--duration",
+                                                 "0.002", "--set", "time.dt=5e-5", "-o", "a"});
+  ASSERT_EQ(ok.status, 0) << ok.err << ok.out;
+  EXPECT_EQ(ok.out.find("adaptive step"), std::string::npos) << ok.out;
+  const test::Result bad = test::run_sluice(dir, {"bench", column, "--sweep", "solver.type=iisph,wcsph", "--duration",
+                                                  "0.002", "--set", "time.dt=5e-4", "-o", "b"});
+  EXPECT_EQ(bad.status, 2) << bad.out;
+  EXPECT_NE(bad.err.find("/time/dt: WCSPH step 0.0005 s exceeds the acoustic limit"), std::string::npos) << bad.err;
+}
+
+// The README's speed-against-error recipe (`bench SCENE --duration 1 --sweep
+// time.dt=2.5e-4,5e-4,1e-3`) and the solver sweep run on every shipped scene, shortened
+// to 2 ms (and a settle of 0.02 s where the scene settles; the full settles are covered by
+// Sweep.FixedStepSettleEndsWithoutASliverStep).
+TEST(SweepCommand, ReadmeRecipeRunsOnEveryShippedScene) {
+  std::size_t scenes = 0;
+  for (const auto& e : std::filesystem::directory_iterator(kRoot + "scenes")) {
+    if (e.path().extension() != ".json") continue;
+    ++scenes;
+    const bool settles = test::read_text(e.path()).find("\"settle\"") != std::string::npos;
+    for (const char* sweep : {"time.dt=2.5e-4,5e-4,1e-3", "solver.type=iisph,wcsph"}) {
+      test::CaseDir dir;
+      std::vector<std::string> args{"bench", e.path().string(), "--duration", "0.002", "--sweep", sweep, "-o", "out"};
+      if (settles) args.insert(args.end(), {"--set", "time.settle=0.02"});
+      const auto t0 = std::chrono::steady_clock::now();
+      const test::Result r = test::run_sluice(dir, args);
+      std::printf("[ measured ] %-20s --sweep %-26s %5.1f s\n", e.path().filename().c_str(), sweep,
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      EXPECT_EQ(r.status, 0) << e.path() << " --sweep " << sweep << "\n" << r.err << r.out;
+      if (r.status != 0) continue;
+      const io::CsvTable t = io::read_csv_table((dir.work() / "out" / "bench.csv").string());
+      EXPECT_EQ(t.rows.size(), std::string(sweep).starts_with("time.dt") ? 3u : 2u) << e.path() << " " << sweep;
+      for (const auto& row : t.rows) EXPECT_EQ(row[t.column("stable")], "1") << e.path() << ": " << r.out;
+    }
+  }
+  EXPECT_GE(scenes, 8u);
 }
 
 }  // namespace

@@ -3,12 +3,16 @@
 // experiment's 15 points, as `sluice validate dam-break` prints it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "analysis/validation.h"
 #include "scene/scene.h"
+#include "test_process.h"
 
 namespace sluice {
 namespace {
@@ -122,6 +126,78 @@ TEST(Validation, ThinPlateLeavesWaterStill) {
     EXPECT_LE(r.median_speed_end, 0.005) << solver;
     EXPECT_LE(r.energy_drift, 0.0) << solver;
   }
+}
+
+// --- `sluice validate`, run as a process -----------------------------------------------
+// Each subcommand as a user runs it, in a folder holding the shipped scenes (its default
+// scene files), shortened with its own flags where the full run takes minutes. A
+// shortened run need not meet bounds meant for the full length (the tests above hold
+// those); it must run to its end: a row per solver or case, its CSV, and exit 1 exactly
+// when a row reads FAILED. A scene or flag error (2: what `validate elliptical-drop`
+// gave when WCSPH's default stiffness could not see the drop's motion), an output error
+// (3) or an instability (4) fails the test.
+
+test::Result run_validate(const test::CaseDir& dir, const std::vector<std::string>& args) {
+  std::filesystem::create_directory_symlink(kRoot + "scenes", dir.work() / "scenes");
+  std::vector<std::string> all{"validate"};
+  all.insert(all.end(), args.begin(), args.end());
+  const auto t0 = std::chrono::steady_clock::now();
+  test::Result r = test::run_sluice(dir, all);
+  std::printf("[ measured ] validate %s: %.1f s, exit %d\n", args.front().c_str(),
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), r.status);
+  std::printf("%s", r.out.c_str());
+  return r;
+}
+
+// The run ended with its verdict, a row for each of `rows` (a solver or a case) and
+// `csv` under renders/validation with one line per row after its header.
+void expect_verdict(const test::CaseDir& dir, const test::Result& r, const std::vector<std::string>& rows,
+                    const std::map<std::string, std::size_t>& csv) {
+  const bool failed = r.out.find("FAILED") != std::string::npos;
+  EXPECT_EQ(r.status, failed ? 1 : 0) << r.err;
+  EXPECT_EQ(r.err.find("error"), std::string::npos) << r.err;
+  for (const std::string& row : rows) EXPECT_NE(r.out.find("\n" + row + " "), std::string::npos) << row;
+  for (const auto& [file, lines] : csv) {
+    const std::string text = test::read_text(dir.work() / "renders" / "validation" / file);
+    EXPECT_EQ(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')), lines + 1) << file;
+  }
+}
+
+// With its defaults, in full (a few seconds): both solvers within the 1 % bound.
+TEST(ValidateCommand, EllipticalDrop) {
+  test::CaseDir dir;
+  const test::Result r = run_validate(dir, {"elliptical-drop"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  expect_verdict(dir, r, {"iisph", "wcsph"}, {{"elliptical_drop.csv", 2}});
+  EXPECT_EQ(r.out.find("FAILED"), std::string::npos);
+}
+
+// One spacing, 0.04 (the default runs 0.04, 0.02 and 0.01), both solvers and releases:
+// all four within the 20 % bound.
+TEST(ValidateCommand, DamBreak) {
+  test::CaseDir dir;
+  const test::Result r = run_validate(dir, {"dam-break", "--spacing", "0.04"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  expect_verdict(dir, r, {"iisph   instant", "iisph   gate", "wcsph   instant", "wcsph   gate"},
+                 {{"dam_break_points.csv", 4 * 15}});
+}
+
+// The shipped tank and the eight boundary cases at h = 0.02, settled 0.1 s, run 0.6 s
+// (the defaults: h = 0.01 and 0.02, 1 and 0.5 s of settling, 3 and 2 s).
+TEST(ValidateCommand, Hydrostatic) {
+  test::CaseDir dir;
+  const test::Result r =
+      run_validate(dir, {"hydrostatic", "--set", "spacing=0.02", "time.settle=0.1", "time.duration=0.6"});
+  std::vector<std::string> rows{"iisph", "wcsph"};
+  for (const auto& c : analysis::hydrostatic_cases()) rows.push_back(c.name);
+  expect_verdict(dir, r, rows, {{"hydrostatic_shipped.csv", 2}, {"hydrostatic.csv", 8}});
+}
+
+// The plate, settled 0.1 s, run 0.1 s (the defaults: 1 s and 2 s).
+TEST(ValidateCommand, ThinPlate) {
+  test::CaseDir dir;
+  const test::Result r = run_validate(dir, {"thin-plate", "--set", "time.settle=0.1", "time.duration=0.1"});
+  expect_verdict(dir, r, {"iisph", "wcsph"}, {{"thin_plate.csv", 2}});
 }
 
 }  // namespace

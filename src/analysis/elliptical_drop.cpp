@@ -95,6 +95,18 @@ Moments moments(const std::vector<Vec2>& x) {
 
 }  // namespace
 
+InitialVelocity elliptical_drop_velocity(double A0) {
+  return [A0](const std::vector<Vec2>& x, std::vector<Vec2>& v) {
+    if (x.empty()) return;
+    const Vec2 c = moments(x).centroid;
+    v.resize(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const Vec2 d = x[i] - c;
+      v[i] = Vec2(-A0 * d.x(), A0 * d.y());
+    }
+  };
+}
+
 EllipticalDropResult run_elliptical_drop(const Scene& scene, double A0) {
   if (scene.fluid_x.empty()) throw SceneError(scene.file + ": /fluid: the elliptical drop needs a fluid drop");
   if (!(A0 > 0))
@@ -106,14 +118,10 @@ EllipticalDropResult run_elliptical_drop(const Scene& scene, double A0) {
   // Each particle fills an h x h cell: the drop's area is N h^2.
   r.R0 = std::sqrt(static_cast<double>(r.particles) * r.h * r.h / M_PI);
 
-  // The initial field u = -A0 x, v = A0 y about the centroid (the scene cannot express a
-  // non-uniform velocity; the solver reads Scene::fluid_v).
+  // The initial field, whatever the scene was loaded with (the solver reads Scene::fluid_v).
   Scene s = scene;
+  elliptical_drop_velocity(A0)(s.fluid_x, s.fluid_v);
   const Moments m0 = moments(s.fluid_x);
-  for (std::size_t i = 0; i < s.fluid_x.size(); ++i) {
-    const Vec2 d = s.fluid_x[i] - m0.centroid;
-    s.fluid_v[i] = Vec2(-A0 * d.x(), A0 * d.y());
-  }
 
   // Semi-axes from the second moments. A uniformly filled ellipse has <x^2> = a^2/4, but
   // the lattice disc's <x^2> differs from R0^2/4 by the cells' own h^2/12 and the stair-

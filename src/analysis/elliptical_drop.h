@@ -31,6 +31,11 @@ EllipseAxes ellipse_semi_axes(double A0, double R0, double t, long steps = 0);
 // growing axis, A b, or A0 R0 at the start [m/s].
 double ellipse_max_speed(double A0, double R0, double t_end);
 
+// The drop's initial velocity u = -A0 x, v = A0 y about the particles' centroid, for
+// load_scene: the scene format has no non-uniform velocity, and the scene must see the
+// motion before it derives WCSPH's default stiffness from it (solver/setup.h).
+InitialVelocity elliptical_drop_velocity(double A0);
+
 // Overrides that turn the scene into a WCSPH run: the sound speed c = sqrt(k / rho0) ten
 // times ellipse_max_speed (density errors ~ (v/c)^2 = 1 %), and the fixed step the
 // largest divisor of the frame interval with dt <= 0.4 h / c.
@@ -56,7 +61,8 @@ struct EllipticalDropResult {
 };
 
 // Runs `scene` (one drop of fluid, gravity 0, no walls needed) with the initial velocity
-// (-A0 x, A0 y) about the particles' centroid, replacing the scene's fluid velocities, to
+// (-A0 x, A0 y) about the particles' centroid, replacing the scene's fluid velocities
+// (elliptical_drop_velocity; load the scene with it for WCSPH's default stiffness), to
 // the scene's duration. Throws SceneError when the scene has no fluid or A0 is not > 0.
 // The error grows with the aspect ratio b/a, not with h: a stretched lattice's kernel sum
 // exceeds rho0 (+0.9 % at b/a = 1.48, +6 % at 2.1), so both solvers let the drop's area

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include "io/csv.h"
@@ -65,7 +66,8 @@ std::vector<std::string> split_values(const std::string& text) {
 
 std::string SweepRun::label() const {
   std::vector<std::string> values;
-  for (const std::string& kv : set) values.push_back(kv.substr(kv.find('=') + 1));
+  for (const std::string& kv : set)
+    values.push_back(kv == "time.dt=null" ? "adaptive dt" : kv.substr(kv.find('=') + 1));
   return join(values, ", ");
 }
 
@@ -108,11 +110,13 @@ SweepRun run_sweep_point(const Scene& scene, const std::vector<std::string>& set
   const double dt_max = scene.time.dt > 0 ? scene.time.dt : scene.time.dt_max;
   r.min_dt = HUGE_VAL;
   const auto t0 = std::chrono::steady_clock::now();
-  Simulation sim(scene);
-  sim.set_brute_force_neighbors(brute_force);
+  std::unique_ptr<Simulation> sim;
   try {
-    while (!sim.finished()) {
-      const StepStats st = sim.step();
+    // Inside: a settle (time.settle) can go unstable too, and is recorded as the run's.
+    sim = std::make_unique<Simulation>(scene);
+    sim->set_brute_force_neighbors(brute_force);
+    while (!sim->finished()) {
+      const StepStats st = sim->step();
       if (on_step) on_step(st);
       ++r.steps;
       iterations += st.iterations;
@@ -133,7 +137,7 @@ SweepRun run_sweep_point(const Scene& scene, const std::vector<std::string>& set
     r.message = e.what();
   }
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.simulated = sim.time();
+  r.simulated = sim ? sim->time() : 0.0;
   const double ns = r.steps > 0 ? static_cast<double>(r.steps) : 1.0;
   r.avg_iterations = iterations / ns;
   r.avg_density_error = error / ns;

@@ -71,16 +71,16 @@ std::string self_executable() {
 const std::vector<std::string> kSweepFiles = {"bench.csv", "bench.md", "bench.png", "bench.gp"};
 
 void print_sweep_header() {
-  std::printf("%4s %-44s %-6s %5s %10s %7s %7s %10s %10s  %s\n", "run", "overrides", "solver", "stable", "s/sim_s",
-              "steps", "iters", "avg_err_%", "max_err_%", "pareto");
+  std::printf("%4s %-44s %-6s %5s %10s %7s %10s %7s %10s %10s  %s\n", "run", "overrides", "solver", "stable", "s/sim_s",
+              "steps", "avg_dt_s", "iters", "avg_err_%", "max_err_%", "pareto");
 }
 
 void print_sweep_row(std::size_t i, const analysis::SweepRun& r) {
   std::string set;
   for (const auto& s : r.set) set += (set.empty() ? "" : " ") + s;
-  std::printf("%4zu %-44s %-6s %5s %10.3f %7ld %7.2f %10.4f %10.4f  %s\n", i + 1, set.c_str(), r.solver.c_str(),
-              r.stable ? "yes" : "NO", r.seconds_per_simulated_second(), r.steps, r.avg_iterations, r.avg_density_error,
-              r.max_density_error, r.pareto ? "*" : "");
+  std::printf("%4zu %-44s %-6s %5s %10.3f %7ld %10.4g %7.2f %10.4f %10.4f  %s\n", i + 1, set.c_str(), r.solver.c_str(),
+              r.stable ? "yes" : "NO", r.seconds_per_simulated_second(), r.steps, r.avg_dt, r.avg_iterations,
+              r.avg_density_error, r.max_density_error, r.pareto ? "*" : "");
   std::fflush(stdout);
 }
 
@@ -96,6 +96,50 @@ void write_sweep_outputs(std::vector<analysis::SweepRun>& runs, const fs::path& 
   std::printf("wrote %s, bench.md%s\n", (dir / "bench.csv").string().c_str(), why.empty() ? ", bench.png" : "");
 }
 
+// The path an override sets, as a JSON pointer: "time.dt=1e-3" and "/time/dt=1e-3" give
+// "/time/dt".
+std::string override_pointer(const std::string& text) {
+  std::string path = text.substr(0, text.find('='));
+  if (!path.starts_with("/")) {
+    std::replace(path.begin(), path.end(), '.', '/');
+    path.insert(0, "/");
+  }
+  return path;
+}
+
+// Loads one run of a sweep. A scene's fixed time.dt is chosen for its own solver: where
+// the sweep varies solver.type, a WCSPH run whose step (from the scene, not from --set or
+// the sweep) exceeds the acoustic limit 0.4 h / c (Monaghan 1992) takes the adaptive step
+// instead, which keeps that limit. "time.dt=null" joins its overrides, so that the table,
+// bench.csv and the --jobs lines show and repeat it; `note` says why.
+Scene load_sweep_run(const std::string& file, const std::vector<std::string>& common, std::vector<std::string>& combo,
+                     bool solver_varies, std::string& note) {
+  std::vector<std::string> set = common;
+  set.insert(set.end(), combo.begin(), combo.end());
+  const bool step_set = std::any_of(set.begin(), set.end(), [](const std::string& s) {
+    const std::string p = override_pointer(s);
+    return p == "/time" || p == "/time/dt" || p == "/time/cfl";
+  });
+  if (!solver_varies || step_set) return load_scene(file, set);
+  std::vector<std::string> adaptive_set = set;
+  adaptive_set.push_back("time.dt=null");
+  Scene adaptive = load_scene(file, adaptive_set);
+  if (adaptive.solver.type != SolverType::WCSPH) return load_scene(file, set);
+  // The scene's own step: the same overrides as IISPH, which has no acoustic limit.
+  std::vector<std::string> iisph_set = set;
+  iisph_set.push_back("solver.type=iisph");
+  const double dt = load_scene(file, iisph_set).time.dt, limit = wcsph_acoustic_limit(adaptive);
+  if (!(dt > 0 && dt > limit)) return load_scene(file, set);
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "the scene's time.dt %g s exceeds WCSPH's acoustic limit 0.4 h / c = %.3g s (stiffness %.4g Pa*m), so "
+                "this run takes the adaptive step (time.dt=null); --set time.dt=... gives every run one fixed step",
+                dt, limit, adaptive.solver.stiffness);
+  note = text;
+  combo.push_back("time.dt=null");
+  return adaptive;
+}
+
 int run_sweep(const BenchOptions& o) {
   if (o.scenes.size() != 1)
     throw view::FlagError("scenes", std::to_string(o.scenes.size()) + " given", "exactly one scene in sweep mode");
@@ -108,17 +152,22 @@ int run_sweep(const BenchOptions& o) {
       throw view::FlagError("--sweep", s, e.what());
     }
   }
-  const auto combos = analysis::sweep_combinations(axes);
+  auto combos = analysis::sweep_combinations(axes);
+  const bool solver_varies = std::any_of(axes.begin(), axes.end(), [](const analysis::SweepAxis& a) {
+    return override_pointer(a.key) == "/solver/type" || override_pointer(a.key) == "/solver";
+  });
   std::vector<std::string> common = o.set;
   if (o.duration > 0) common.push_back("time.duration=" + std::to_string(o.duration));
   // Every combination must load before anything runs: a typo in the last value should
   // not cost the sweep's first hours.
   std::vector<Scene> scenes;
-  for (const auto& c : combos) {
-    std::vector<std::string> set = common;
-    set.insert(set.end(), c.begin(), c.end());
-    scenes.push_back(load_scene(o.scenes[0], set));
+  std::vector<std::string> notes;
+  for (std::size_t i = 0; i < combos.size(); ++i) {
+    std::string note;
+    scenes.push_back(load_sweep_run(o.scenes[0], common, combos[i], solver_varies, note));
+    if (!note.empty()) notes.push_back("run " + std::to_string(i + 1) + ": " + note);
   }
+  for (const auto& n : notes) std::printf("%s\n", n.c_str());
   const fs::path dir = o.output_dir.empty() ? fs::path("renders/bench") / scenes[0].name : fs::path(o.output_dir);
   if (!o.jobs.empty()) {
     std::string text;

@@ -388,14 +388,16 @@ int validate_elliptical_drop(const ValidateOptions& o, const fs::path& dir) {
     if (o.spacing > 0) base.push_back(number_override("spacing", o.spacing));
     std::vector<std::string> set = base;
     set.insert(set.end(), o.set.begin(), o.set.end());
-    Scene scene = load_scene(scene_file, set);
+    // The drop's motion is part of the scene, so that WCSPH's default stiffness sees it.
+    const InitialVelocity drop = analysis::elliptical_drop_velocity(A0);
+    Scene scene = load_scene(scene_file, set, drop);
     if (solver == "wcsph") {
       // The step and stiffness depend on the spacing and the drop; --set still wins.
       set = base;
       const auto w = analysis::elliptical_drop_wcsph_overrides(scene, A0);
       set.insert(set.end(), w.begin(), w.end());
       set.insert(set.end(), o.set.begin(), o.set.end());
-      scene = load_scene(scene_file, set);
+      scene = load_scene(scene_file, set, drop);
     }
     const auto r = analysis::run_elliptical_drop(scene, A0);
     const auto& e = r.series.back();

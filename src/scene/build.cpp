@@ -73,7 +73,8 @@ Index remove_fluid_at_start(Scene& scene, const std::vector<shapes::BoundaryShap
 
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::string& file, const std::vector<std::string>& overrides) {
+Scene parse_scene(const std::string& text, const std::string& file, const std::vector<std::string>& overrides,
+                  const InitialVelocity& initial_velocity) {
   Context ctx{file, &text, {}};
   json root = parse_json(text, ctx);
   // Before the overrides: one of them (e.g. --duration's time.duration) would otherwise
@@ -203,6 +204,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
              "the scene has no fluid particles (" + std::to_string(lattice_points) +
                  (lattice_points ? " lattice points, all removed inside boundaries)"
                                  : " lattice points: the fluid blocks are empty or have no area at this spacing)"));
+  if (initial_velocity) initial_velocity(scene.fluid_x, scene.fluid_v);
 
   const bool default_stiffness = !(scene.solver.stiffness > 0);
   if (default_stiffness) {
@@ -217,7 +219,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
                "solver.stiffness, e.g. 1e6 [Pa*m]");
     // The fixed step must resolve the sound waves (Monaghan 1992): dt <= 0.4 h / c.
     const double c = std::sqrt(scene.solver.stiffness / scene.solver.rest_density);
-    const double limit = kAcousticCfl * h / c;
+    const double limit = wcsph_acoustic_limit(scene);
     if (scene.time.dt > 0 && scene.time.dt > limit)
       ctx.fail("/time/dt",
                "WCSPH step " + num(scene.time.dt) + " s exceeds the acoustic limit 0.4 h / c = " + num(limit) +
@@ -236,7 +238,8 @@ Scene parse_scene(const std::string& text, const std::string& file, const std::v
   return scene;
 }
 
-Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides,
+                 const InitialVelocity& initial_velocity) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (!std::filesystem::exists(status))
@@ -250,7 +253,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   if (!in) throw SceneError(path + ": cannot open scene file: " + std::strerror(errno));
   std::stringstream ss;
   ss << in.rdbuf();
-  return parse_scene(ss.str(), path, overrides);
+  return parse_scene(ss.str(), path, overrides, initial_velocity);
 }
 
 }  // namespace sluice

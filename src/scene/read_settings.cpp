@@ -84,11 +84,23 @@ TimeSettings read_time(Reader& r, const Context& ctx) {
                            " (shorten duration or lower fps)");
   const json* dt = r.find("dt");
   const json* cfl = r.find("cfl");
-  const bool fixed = dt && !dt->is_null(), has_cfl = cfl && !cfl->is_null();
-  if (fixed && has_cfl)
-    ctx.fail(r.path(),
-             "both dt and cfl are given; remove \"cfl\" for a fixed time step, or \"dt\" for the adaptive CFL step (an "
-             "override can remove a key with null, e.g. time.dt=null)");
+  bool fixed = dt && !dt->is_null(), has_cfl = cfl && !cfl->is_null();
+  if (fixed && has_cfl) {
+    // An override of one replaces the file's other: `--set time.dt=1e-3` (or a sweep of
+    // time.dt) on a scene with a cfl runs at that fixed step. Both in the file, or both
+    // overridden, is a mistake.
+    auto overridden = [&](const char* key) {
+      const std::string p = r.at(key);
+      return std::any_of(ctx.overridden.begin(), ctx.overridden.end(),
+                         [&](const std::string& o) { return p == o || p.starts_with(o + "/"); });
+    };
+    const bool dt_set = overridden("dt"), cfl_set = overridden("cfl");
+    if (dt_set == cfl_set)
+      ctx.fail(r.path(),
+               "both dt and cfl are given; remove \"cfl\" for a fixed time step, or \"dt\" for the adaptive CFL step "
+               "(an override can remove a key with null, e.g. time.dt=null)");
+    (dt_set ? has_cfl : fixed) = false;
+  }
   if (fixed) t.dt = ctx.number(*dt, r.at("dt"), Range::positive("[s]"));
   if (has_cfl) t.cfl = ctx.number(*cfl, r.at("cfl"), Range::open_closed(0, 2));
   r.resolved()["dt"] = fixed ? json(t.dt) : json(nullptr);

@@ -3,6 +3,7 @@
 // lattice, boundary samples with their objects) plus the program's own settings.
 // Reading and validation live in src/scene (build.cpp assembles a scene: json_reader,
 // overrides, the section readers); sampling of shapes in core/shapes.cpp.
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -54,12 +55,20 @@ struct Scene : SimulationSetup {
   nlohmann::json resolved;       // the scene with every default filled in
 };
 
+// An initial velocity field the scene format cannot express (the elliptical drop's strain
+// about the fluid's centroid): it replaces the velocities v of the fluid particles at x.
+// The scene applies it to its fluid before anything reads the initial motion (WCSPH's
+// default stiffness and its acoustic check), so these see the motion the run starts with.
+using InitialVelocity = std::function<void(const std::vector<Vec2>& x, std::vector<Vec2>& v)>;
+
 // Reads and validates a scene file; each override is "json/path=value" or
 // "json.path=value" (value parsed as JSON, else taken as a string), applied before
 // validation. Throws SceneError.
-Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {},
+                 const InitialVelocity& initial_velocity = {});
 
 // Same from JSON text already in memory; `file` is only used in messages.
-Scene parse_scene(const std::string& text, const std::string& file, const std::vector<std::string>& overrides = {});
+Scene parse_scene(const std::string& text, const std::string& file, const std::vector<std::string>& overrides = {},
+                  const InitialVelocity& initial_velocity = {});
 
 }  // namespace sluice

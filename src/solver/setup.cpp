@@ -30,4 +30,9 @@ double wcsph_default_stiffness(const SimulationSetup& setup) {
   return setup.solver.rest_density * c0 * c0;
 }
 
+double wcsph_acoustic_limit(const SimulationSetup& setup) {
+  if (!(setup.solver.stiffness > 0)) return 0.0;
+  return kAcousticCfl * setup.spacing / std::sqrt(setup.solver.stiffness / setup.solver.rest_density);
+}
+
 }  // namespace sluice

@@ -52,4 +52,8 @@ double fastest_initial_speed(const SimulationSetup& setup);
 // the setup has neither gravity nor initial motion to scale it by.
 double wcsph_default_stiffness(const SimulationSetup& setup);
 
+// The largest fixed step WCSPH takes at the setup's stiffness (Monaghan 1992):
+// dt <= 0.4 h / c with c = sqrt(stiffness / rest_density) [s]; 0 without a stiffness.
+double wcsph_acoustic_limit(const SimulationSetup& setup);
+
 }  // namespace sluice
