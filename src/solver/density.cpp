@@ -31,9 +31,9 @@ void Simulation::find_neighbors_phase() {
 void Simulation::compute_density() {
   const double w0 = kernel_.W(0.0);
   const double rho0 = settings_.rest_density, g2 = settings_.gamma2;
-  ff_.grad.resize(static_cast<size_t>(ff_.pairs()));
-  fb_.grad.resize(static_cast<size_t>(fb_.pairs()));
-  fb_.w.resize(static_cast<size_t>(fb_.pairs()));
+  resize_pairs(ff_.grad, static_cast<size_t>(ff_.pairs()));
+  resize_pairs(fb_.grad, static_cast<size_t>(fb_.pairs()));
+  resize_pairs(fb_.w, static_cast<size_t>(fb_.pairs()));
   const bool correct = settings_.gradient_correction;
   if (correct) scratch_->grad_scale.resize(fluid_.size());
   parallel_for(fluid_.size(), [&](Index i) {

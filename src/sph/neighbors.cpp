@@ -122,7 +122,7 @@ void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid,
     buf.used = used;
   }
   for (Index i = 0; i < n; ++i) out.offset[i + 1] += out.offset[i];
-  out.j.resize(static_cast<size_t>(out.offset[n]));
+  resize_pairs(out.j, static_cast<size_t>(out.offset[n]));
 #pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
   for (int c = 0; c < nchunks; ++c) {
     const NeighborLists::Chunk& buf = out.chunks[static_cast<size_t>(c)];
@@ -194,8 +194,8 @@ namespace sluice {
 void fill_pair_cache(const std::vector<Vec2>& query, const std::vector<Vec2>& points, const CubicSpline2D& kernel,
                      PairCache cache, NeighborLists& lists) {
   const Index n = static_cast<Index>(query.size());
-  lists.grad.resize(cache.grad ? lists.j.size() : 0);
-  lists.w.resize(cache.w ? lists.j.size() : 0);
+  resize_pairs(lists.grad, cache.grad ? lists.j.size() : 0);
+  resize_pairs(lists.w, cache.w ? lists.j.size() : 0);
   if (!cache.grad && !cache.w) return;
   parallel_for(n, [&](Index i) {
     for (Index k = lists.offset[i]; k < lists.offset[i + 1]; ++k) {
@@ -212,9 +212,9 @@ void transpose_neighbors(const NeighborLists& fb, Index boundary_count, Neighbor
   bf.offset.assign(static_cast<size_t>(boundary_count) + 1, 0);
   for (Index k = 0; k < fb.pairs(); ++k) ++bf.offset[fb.j[k] + 1];
   for (Index b = 0; b < boundary_count; ++b) bf.offset[b + 1] += bf.offset[b];
-  bf.j.resize(static_cast<size_t>(fb.pairs()));
-  bf.w.resize(static_cast<size_t>(fb.pairs()));
-  bf.grad.resize(static_cast<size_t>(fb.pairs()));
+  resize_pairs(bf.j, static_cast<size_t>(fb.pairs()));
+  resize_pairs(bf.w, static_cast<size_t>(fb.pairs()));
+  resize_pairs(bf.grad, static_cast<size_t>(fb.pairs()));
   std::vector<Index> fill(bf.offset.begin(), bf.offset.end() - 1);
   // Serial and in fluid order: deterministic, and each boundary list sorted by fluid index.
   for (Index i = 0; i < n; ++i) {
