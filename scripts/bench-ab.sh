@@ -14,7 +14,8 @@
 #   smoke     simulate scenes/dam_break.json, first 0.02 s (a check of this script)
 # --rounds N (default 3), --threads N (default: all cores, fixed for both programs),
 # -o DIR (default out/bench-ab/REV): runs.csv (one row per run) and ratios.csv (per case:
-# the median ratio, its range, iterations and errors of each). Both programs read this
+# the median ratio, its range, iterations, errors and mean neighbour-phase and pressure
+# milliseconds per step of each). Both programs read this
 # tree's scene files. The ratio is REV's wall time per simulated second over this build's:
 # above 1, this build is faster.
 set -euo pipefail
@@ -26,7 +27,7 @@ while [ $# -gt 0 ]; do
     --rounds) rounds="${2:?--rounds needs a number}"; shift 2 ;;
     --threads) threads="${2:?--threads needs a number}"; shift 2 ;;
     -o) out="${2:?-o needs a directory}"; shift 2 ;;
-    -h|--help) sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "bench-ab: unknown flag '$1' (see --help)" >&2; exit 2 ;;
     *) if [ -z "$rev" ]; then rev=$1; else cases+=("$1"); fi; shift ;;
   esac
@@ -71,7 +72,7 @@ fi
 b_bin=$PWD/$bld/sluice
 
 runs=$out/runs.csv
-echo "round,case,build,commit,wall_s,simulated_s,wall_per_simulated_s,steps,iterations,avg_error_percent,max_error_percent" >"$runs"
+echo "round,case,build,commit,wall_s,simulated_s,wall_per_simulated_s,steps,iterations,avg_error_percent,max_error_percent,ms_neighbors,ms_pressure" >"$runs"
 # run ROUND CASE A|B: one simulate, its totals appended to runs.csv.
 run() {
   local bin=$a_bin commit=$head dir=$out/run_$3
@@ -80,12 +81,14 @@ run() {
   read -ra args <<<"$(case_args "$2")"  # words, never globbed ([0.5,2])
   timeout 3600 "$bin" simulate "${args[@]}" --threads "$threads" -q -o "$dir" --overwrite >"$dir.log" 2>&1 ||
     { cat "$dir.log" >&2; echo "bench-ab: $3 ($commit) failed on $2 in round $1" >&2; exit 1; }
-  python3 - "$dir/summary.json" "$1,$2,$3,$commit" >>"$runs" <<'EOF'
-import json, sys
+  python3 - "$dir/summary.json" "$1,$2,$3,$commit" "$dir/stats.csv" >>"$runs" <<'EOF'
+import csv, json, sys
 t = json.load(open(sys.argv[1]))["totals"]
 wall, sim = t["wall_seconds"], t["simulated_time"]
+steps = list(csv.DictReader(open(sys.argv[3])))  # the phases' mean milliseconds per step
+ms = lambda k: sum(float(r[k]) for r in steps) / max(len(steps), 1)
 print(f"{sys.argv[2]},{wall:.3f},{sim:.4f},{wall / sim:.3f},{t['steps']},{t['average_iterations']:.3f},"
-      f"{t['average_error_percent']:.4f},{t['max_error_percent']:.4f}")
+      f"{t['average_error_percent']:.4f},{t['max_error_percent']:.4f},{ms('ms_neighbors'):.3f},{ms('ms_pressure'):.3f}")
 EOF
 }
 
@@ -107,10 +110,11 @@ rows = list(csv.DictReader(open(sys.argv[1])))
 head, short = sys.argv[3], sys.argv[4]
 out = open(sys.argv[2], "w")
 out.write("case,a,b,rounds,median_ratio,min_ratio,max_ratio,a_median_wall_per_sim_s,b_median_wall_per_sim_s,"
-          "a_iterations,b_iterations,a_avg_error_percent,b_avg_error_percent,a_max_error_percent,b_max_error_percent\n")
+          "a_iterations,b_iterations,a_avg_error_percent,b_avg_error_percent,a_max_error_percent,b_max_error_percent,"
+          "a_ms_neighbors,b_ms_neighbors,a_ms_pressure,b_ms_pressure\n")
 print(f"\nratio = B's wall per simulated second / A's (above 1: A = {head} is faster than B = {short})")
 print(f"{'case':9s} {'rounds':>6s} {'median':>7s} {'range':>13s} {'A s/sim_s':>10s} {'B s/sim_s':>10s} "
-      f"{'A iters':>8s} {'B iters':>8s} {'A err %':>8s} {'B err %':>8s}")
+      f"{'A iters':>8s} {'B iters':>8s} {'A err %':>8s} {'B err %':>8s} {'A nbr ms':>8s} {'B nbr ms':>8s}")
 for case in dict.fromkeys(r["case"] for r in rows):
     by = {(r["round"], r["build"]): r for r in rows if r["case"] == case}
     rounds = sorted({k[0] for k in by}, key=int)
@@ -119,9 +123,10 @@ for case in dict.fromkeys(r["case"] for r in rows):
     vals = [statistics.median(ratios), min(ratios), max(ratios), med("A", "wall_per_simulated_s"),
             med("B", "wall_per_simulated_s"), med("A", "iterations"), med("B", "iterations"),
             med("A", "avg_error_percent"), med("B", "avg_error_percent"), med("A", "max_error_percent"),
-            med("B", "max_error_percent")]
+            med("B", "max_error_percent"), med("A", "ms_neighbors"), med("B", "ms_neighbors"), med("A", "ms_pressure"),
+            med("B", "ms_pressure")]
     out.write(f"{case},{head},{short},{len(rounds)}," + ",".join(f"{v:.4g}" for v in vals) + "\n")
     print(f"{case:9s} {len(rounds):6d} {vals[0]:7.3f} {vals[1]:6.3f}-{vals[2]:<6.3f} {vals[3]:10.2f} {vals[4]:10.2f} "
-          f"{vals[5]:8.2f} {vals[6]:8.2f} {vals[7]:8.4f} {vals[8]:8.4f}")
+          f"{vals[5]:8.2f} {vals[6]:8.2f} {vals[7]:8.4f} {vals[8]:8.4f} {vals[11]:8.2f} {vals[12]:8.2f}")
 EOF
 echo "bench-ab: wrote $runs and $out/ratios.csv"
