@@ -414,61 +414,6 @@ TEST(Neighbors, TransposeNeighbors) {
   EXPECT_EQ(empty_bf.offset, (std::vector<Index>{0, 0, 0, 0}));
 }
 
-// The fused kernel pass (find_neighbors with KernelSums): the grid's lists with their
-// grad W, W and sums are those of compute_kernel_sums on the same lists, bit for bit, for
-// any thread count, and the sums are the kernel sums they name.
-TEST(Neighbors, FusedKernelSumsMatchTheSeparatePass) {
-  const double h = 0.02;
-  const CubicSpline2D k(h);
-  const Points p = clustered_points(3000, h, 18);
-  const Points q = uniform_points(800, {-0.5, -0.5}, {0.5, 0.5}, 19);
-  std::vector<double> volume(p.size());
-  for (size_t j = 0; j < volume.size(); ++j) volume[j] = 0.5 + 0.001 * static_cast<double>(j % 997);
-  SpatialHashGrid grid;
-  grid.build(p, k.support());
-  for (bool self : {true, false})
-    for (bool weighted : {false, true}) {
-      SCOPED_TRACE(std::string("exclude_self ") + (self ? "true" : "false") + ", volumes " + (weighted ? "yes" : "no"));
-      const Points& query = self ? p : q;
-      const PairCache cache{.grad = true, .w = weighted};
-      KernelSums fused[2];
-      NeighborLists lists[2];
-      for (int t : {1, 2}) {
-        test::ThreadCount threads(t);
-        fused[t - 1].volume = weighted ? &volume : nullptr;
-        find_neighbors(query, grid, k, self, cache, lists[t - 1], &fused[t - 1]);
-      }
-      ASSERT_EQ(lists[0].j, lists[1].j);
-      ASSERT_TRUE(lists[0].grad == lists[1].grad);
-      ASSERT_EQ(lists[0].w, lists[1].w);
-      ASSERT_EQ(fused[0].w, fused[1].w);
-      ASSERT_EQ(fused[0].dw_r2, fused[1].dw_r2);
-      NeighborLists separate = lists[0];
-      separate.grad.assign(separate.grad.size(), Vec2f::Zero());
-      separate.w.assign(separate.w.size(), 0.0);
-      KernelSums sums{.volume = weighted ? &volume : nullptr};
-      compute_kernel_sums(query, p, k, self, cache, separate, sums);
-      ASSERT_TRUE(separate.grad == lists[0].grad);
-      ASSERT_EQ(separate.w, lists[0].w);
-      ASSERT_EQ(sums.w, fused[0].w);
-      ASSERT_EQ(sums.dw_r2, fused[0].dw_r2);
-      ASSERT_EQ(lists[0].w.size(), weighted ? lists[0].j.size() : 0u);
-      // The sums themselves, against the kernel directly.
-      for (Index i = 0; i < static_cast<Index>(query.size()); ++i) {
-        double w = self ? k.W(0.0) : 0.0, t = 0.0;
-        for (Index e = lists[0].offset[i]; e < lists[0].offset[i + 1]; ++e) {
-          const Index j = lists[0].j[e];
-          const Vec2 r = query[i] - p[j];
-          const double v = weighted ? volume[j] : 1.0;
-          w += v * k.W(r);
-          t += v * r.norm() * r.norm() * k.dWdr_over_r(r.norm());
-        }
-        ASSERT_NEAR(fused[0].w[i], w, 1e-12 * k.W(0.0) * 40);
-        ASSERT_NEAR(fused[0].dw_r2[i], t, 1e-10 * (1 + std::abs(t)));
-      }
-    }
-}
-
 TEST(Neighbors, SameResultForOneAndTwoThreads) {
   const double h = 0.02;
   const CubicSpline2D k(h);

@@ -10,19 +10,17 @@
 
 #include "core/types.h"
 #include "solver/settings.h"
-#include "sph/neighbors.h"
 
 namespace sluice {
 
 // Per-step scratch of the pressure solvers ("hot" arrays, reused between steps).
 struct SolverScratch {
-  std::vector<Vec2> a_p;                 // pressure acceleration (Eq. 11/24)
-  std::vector<Vec2> grad_b;              // sum_b m_b grad W_ib, fixed within a step
-  std::vector<double> a_ii;              // diagonal (Eq. 22/26)
-  std::vector<double> grad_scale;        // c_i of the gradient correction (compute_density)
-  KernelSums fluid_sums, boundary_sums;  // find_neighbors_phase's kernel sums (Eq. 13)
-  std::vector<double> s;                 // source term (Eq. 19)
-  std::vector<double> err;               // predicted compression of Eq. 23 [%]
+  std::vector<Vec2> a_p;           // pressure acceleration (Eq. 11/24)
+  std::vector<Vec2> grad_b;        // sum_b m_b grad W_ib, fixed within a step
+  std::vector<double> a_ii;        // diagonal (Eq. 22/26)
+  std::vector<double> grad_scale;  // c_i of the gradient correction (compute_density)
+  std::vector<double> s;           // source term (Eq. 19)
+  std::vector<double> err;         // predicted compression of Eq. 23 [%]
   // Fused Jacobi sweep (Simulation::jacobi_sweep): the bounds of its ranges (one per
   // thread), for each particle the number of blocks after its own that its update
   // waits for (-1: deferred until every range is done), and the deferred particles.

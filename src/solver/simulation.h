@@ -103,8 +103,8 @@ class Simulation {
   void run_phase(Phase phase, double dt, StepStats& st);  // one phase of it
   void settle();                                          // TimeSettings::settle, before t = 0
   void measure_energy(StepStats& st) const;
-  void find_neighbors_phase();                          // lists, grad W per pair and the kernel sums, fused
-  void compute_density();                               // Eq. 13 + section 4.1 from the sums, gradient correction
+  void find_neighbors_phase();
+  void compute_density();                               // grad W per pair, then Eq. 13 + section 4.1
   void apply_nonpressure(double dt);                    // Eq. 12 + gravity: v* = v + dt (a_v + g)
   void solve_pressure_iisph(double dt, StepStats& st);  // prepare_pressure_system, then iterate_pressure
   Index prepare_pressure_system(double dt);

@@ -96,48 +96,15 @@ void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius, doub
   }
 }
 
-namespace {
-// The fused kernel pass of one query point xi over its count neighbours j[0..count):
-// grad W (single precision, see NeighborLists) and, with w_out, W of each pair, and the
-// query's KernelSums. Summed in neighbour order; V_j = 1 without volumes gives the same
-// bits as the unweighted sums (1 * x == x).
-inline void kernel_pairs_of(const Vec2& xi, const std::vector<Vec2>& points, const CubicSpline2D& kernel,
-                            const double* volume, const Index* j, size_t count, Vec2f* grad, double* w_out, double self,
-                            double& w_sum, double& dw_r2_sum) {
-  double sw = self, st = 0.0;
-  for (size_t k = 0; k < count; ++k) {
-    const Vec2 r = xi - points[j[k]];
-    const double r2 = r.squaredNorm();
-    double w, dw;
-    kernel.eval(std::sqrt(r2), w, dw);
-    const double v = volume ? volume[j[k]] : 1.0;
-    sw += v * w;
-    st += v * dw * r2;
-    if (w_out) w_out[k] = w;
-    grad[k] = (dw * r).cast<float>();
-  }
-  w_sum = sw;
-  dw_r2_sum = st;
-}
-}  // namespace
-
 // One query per particle: each thread lists the pairs of a contiguous chunk of queries
 // into its own buffer; the chunks are then copied into place after a prefix sum. The
 // result does not depend on the number of threads.
 void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid, const CubicSpline2D& kernel,
-                    bool exclude_self, PairCache cache, NeighborLists& out, KernelSums* sums) {
+                    bool exclude_self, PairCache cache, NeighborLists& out) {
   const Index n = static_cast<Index>(query.size());
   const double radius = kernel.support();
   out.offset.resize(static_cast<size_t>(n) + 1);
   out.offset[0] = 0;
-  const double* volume = nullptr;
-  const double self = exclude_self ? kernel.W(0.0) : 0.0;
-  if (sums) {
-    cache.grad = true;
-    sums->w.resize(static_cast<size_t>(n));
-    sums->dw_r2.resize(static_cast<size_t>(n));
-    if (sums->volume) volume = sums->volume->data();
-  }
   // More chunks than threads, taken dynamically, so that threads finish together; the
   // output does not depend on the chunking.
   const int nchunks = static_cast<int>(std::clamp<Index>(n / 512, 1, 8 * omp_get_max_threads()));
@@ -151,48 +118,17 @@ void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid,
       const size_t before = used;
       used = grid.gather_within(query[i], radius, exclude_self ? i : Index(-1), buf.j, used);
       out.offset[i + 1] = static_cast<Index>(used - before);
-      if (!sums) continue;
-      if (buf.grad.size() < buf.j.size()) buf.grad.resize(buf.j.size());
-      if (cache.w && buf.w.size() < buf.j.size()) buf.w.resize(buf.j.size());
-      kernel_pairs_of(query[i], grid.points(), kernel, volume, buf.j.data() + before, used - before,
-                      buf.grad.data() + before, cache.w ? buf.w.data() + before : nullptr, self, sums->w[i],
-                      sums->dw_r2[i]);
     }
     buf.used = used;
   }
   for (Index i = 0; i < n; ++i) out.offset[i + 1] += out.offset[i];
-  const size_t pairs = static_cast<size_t>(out.offset[n]);
-  resize_pairs(out.j, pairs);
-  if (sums) {
-    resize_pairs(out.grad, pairs);
-    resize_pairs(out.w, cache.w ? pairs : 0);
-  }
+  resize_pairs(out.j, static_cast<size_t>(out.offset[n]));
 #pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
   for (int c = 0; c < nchunks; ++c) {
     const NeighborLists::Chunk& buf = out.chunks[static_cast<size_t>(c)];
-    const Index at = out.offset[chunk_begin(c)];
-    std::copy_n(buf.j.begin(), buf.used, out.j.begin() + at);
-    if (!sums) continue;
-    std::copy_n(buf.grad.begin(), buf.used, out.grad.begin() + at);
-    if (cache.w) std::copy_n(buf.w.begin(), buf.used, out.w.begin() + at);
+    std::copy_n(buf.j.begin(), buf.used, out.j.begin() + out.offset[chunk_begin(c)]);
   }
-  if (!sums) fill_pair_cache(query, grid.points(), kernel, cache, out);
-}
-
-void compute_kernel_sums(const std::vector<Vec2>& query, const std::vector<Vec2>& points, const CubicSpline2D& kernel,
-                         bool exclude_self, PairCache cache, NeighborLists& lists, KernelSums& sums) {
-  const Index n = static_cast<Index>(query.size());
-  const double* volume = sums.volume ? sums.volume->data() : nullptr;
-  const double self = exclude_self ? kernel.W(0.0) : 0.0;
-  sums.w.resize(static_cast<size_t>(n));
-  sums.dw_r2.resize(static_cast<size_t>(n));
-  resize_pairs(lists.grad, lists.j.size());
-  resize_pairs(lists.w, cache.w ? lists.j.size() : 0);
-  parallel_for(n, [&](Index i) {
-    const Index k0 = lists.offset[i];
-    kernel_pairs_of(query[i], points, kernel, volume, lists.j.data() + k0, static_cast<size_t>(lists.count(i)),
-                    lists.grad.data() + k0, cache.w ? lists.w.data() + k0 : nullptr, self, sums.w[i], sums.dw_r2[i]);
-  });
+  fill_pair_cache(query, grid.points(), kernel, cache, out);
 }
 
 void find_neighbors_brute_force(const std::vector<Vec2>& query, const std::vector<Vec2>& points, double radius,

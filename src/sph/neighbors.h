@@ -35,9 +35,7 @@ struct NeighborLists {
 
   // Per-thread scratch of find_neighbors (pairs of a contiguous chunk of queries).
   struct Chunk {
-    std::vector<Index> j;     // size is capacity; the first `used` entries are valid
-    std::vector<Vec2f> grad;  // fused kernel pass (KernelSums): the same pairs' grad W and W
-    std::vector<double> w;
+    std::vector<Index> j;  // size is capacity; the first `used` entries are valid
     size_t used = 0;
   };
   std::vector<Chunk> chunks;
@@ -157,29 +155,10 @@ struct PairCache {
 
 class CubicSpline2D;
 
-// The kernel sums of a fused search, per query point i (the density of Eq. 13 and the
-// trace of the gradient correction are made of them):
-//   w[i]     = self + sum_j V_j W(r_ij),
-//   dw_r2[i] = sum_j V_j r_ij^2 (dW/dr)(r_ij) / r_ij,
-// with V_j = volume[j] (1 when volume is null) and self = W(0) when the search excludes
-// the query itself (its own term of Eq. 13), else 0.
-struct KernelSums {
-  const std::vector<double>* volume = nullptr;
-  std::vector<double> w, dw_r2;
-};
-
 // Lists, for every query point i, the grid points within the kernel support.
 // With exclude_self, the point with the same index is skipped (fluid against itself).
-// With sums, the pass is fused: each query's grad W (and W with cache.w) is evaluated
-// right after its neighbours are found, while their positions are in cache, and `sums`
-// is filled; cache.grad is then implied. The values are those of compute_kernel_sums.
 void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid, const CubicSpline2D& kernel,
-                    bool exclude_self, PairCache cache, NeighborLists& out, KernelSums* sums = nullptr);
-
-// The fused pass of find_neighbors on existing lists (after a brute-force search): the
-// same grad W, W and sums, bit for bit.
-void compute_kernel_sums(const std::vector<Vec2>& query, const std::vector<Vec2>& points, const CubicSpline2D& kernel,
-                         bool exclude_self, PairCache cache, NeighborLists& lists, KernelSums& sums);
+                    bool exclude_self, PairCache cache, NeighborLists& out);
 
 // O(n m) reference search, same output format (neighbours sorted by index).
 void find_neighbors_brute_force(const std::vector<Vec2>& query, const std::vector<Vec2>& points, double radius,
