@@ -131,14 +131,16 @@ TEST(WallPressure, FloorLoadAndFloorLinePressureConvergeAtEveryTolerance) {
   const analysis::RestBounds bounds;
   for (const char* solver : {"jacobi", "chebyshev"}) {
     for (const char* tolerance : {"0.1", "0.03", "0.01"}) {
-      const FloorResult r = measure_floor({std::string("solver.pressure_solver=") + solver,
-                                           std::string("solver.tolerance=") + tolerance});
+      const FloorResult r = measure_floor(
+          {std::string("solver.pressure_solver=") + solver, std::string("solver.tolerance=") + tolerance});
       std::printf(
-          "[ measured ] %s, tolerance %s %%: load/weight %.5f, bottom row %+.2f %%, rows 1-4 %+.2f %+.2f %+.2f %+.2f %%, "
-          "floor samples %+.2f %%, floor line %+.2f %%, lower half %+.2f %%, median %.5f m/s, %.2f iterations per step\n",
+          "[ measured ] %s, tolerance %s %%: load/weight %.5f, bottom row %+.2f %%, rows 1-4 %+.2f %+.2f %+.2f %+.2f "
+          "%%, "
+          "floor samples %+.2f %%, floor line %+.2f %%, lower half %+.2f %%, median %.5f m/s, %.2f iterations per "
+          "step\n",
           solver, tolerance, r.load_ratio, 100 * (r.bottom_row - 1), 100 * (r.rows[0] - 1), 100 * (r.rows[1] - 1),
-          100 * (r.rows[2] - 1), 100 * (r.rows[3] - 1), 100 * (r.samples - 1), 100 * (r.floor_line - 1), 100 * (r.lower_half - 1),
-          r.median_speed, r.iterations_per_step);
+          100 * (r.rows[2] - 1), 100 * (r.rows[3] - 1), 100 * (r.samples - 1), 100 * (r.floor_line - 1),
+          100 * (r.lower_half - 1), r.median_speed, r.iterations_per_step);
       SCOPED_TRACE(std::string(solver) + ", tolerance " + tolerance);
       EXPECT_NEAR(r.load_ratio, 1.0, 1e-3);
       EXPECT_LE(std::abs(r.floor_line - 1), bounds.bottom_row);
