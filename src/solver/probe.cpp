@@ -28,6 +28,24 @@ const std::vector<double>& SolverProbe::diagonal() const { return sim_.scratch_-
 const std::vector<double>& SolverProbe::sample_source() const { return sim_.scratch_->bnd_s; }
 const std::vector<double>& SolverProbe::sample_diagonal() const { return sim_.scratch_->bnd_aii; }
 
+Vec2 SolverProbe::boundary_pressure_force() const {
+  const Simulation& s = sim_;
+  const Simulation::PressureTerms t = s.pressure_terms(0.0);
+  const double inv_rho0_2 = 1.0 / (s.settings_.rest_density * s.settings_.rest_density);
+  Vec2 f = Vec2::Zero();
+  for (Index i = 0; i < s.fluid_.size(); ++i) {  // fixed order: the same bits for any thread count
+    const double pri = s.fluid_.p[i] / (s.fluid_.rho[i] * s.fluid_.rho[i]);
+    Vec2 a = -(t.c_gamma3 * pri) * s.scratch_->grad_b[i];
+    if (t.boundary_field)
+      for (Index k = s.fb_.offset[i]; k < s.fb_.offset[i + 1]; ++k) {
+        const Index b = s.fb_.j[k];
+        a -= (t.gamma3_rho0 * s.boundary_.volume[b] * s.boundary_.p[b] * inv_rho0_2) * s.fb_.grad[k].cast<double>();
+      }
+    f += s.mass_ * a;
+  }
+  return f;
+}
+
 void SolverProbe::apply(const std::vector<double>& p, const std::vector<double>& pb, std::vector<double>& ap,
                         std::vector<double>& apb) {
   Simulation& s = sim_;

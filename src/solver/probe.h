@@ -30,6 +30,11 @@ class SolverProbe {
   void apply(const std::vector<double>& p, const std::vector<double>& pb, std::vector<double>& ap,
              std::vector<double>& apb);
 
+  // The walls' pressure force on the whole fluid: the sum over fluid particles of m times
+  // the boundary part of Eq. 24, at the current pressures and the last step's pairs [N/m].
+  // Mirroring's p_b = p_i is not applied (c gamma3 covers it). After a step: its force.
+  Vec2 boundary_pressure_force() const;
+
   // Off: the boundary velocity is left out of the IISPH source term (Eq. 16/19), as in
   // the thesis' own code; only to show that the term matters.
   void set_boundary_velocity_in_source(bool on) { sim_.boundary_velocity_in_source_ = on; }
