@@ -42,55 +42,34 @@ struct FloorResult {
   double iterations_per_step = 0;  // over the whole run
 };
 
-// The shipped tank with `set`, measured over its last 0.5 s like
-// analysis::run_hydrostatic (the particles more than 3 h from the side walls).
+// The shipped tank with `set`: analysis::run_hydrostatic's run and averages (bottom row,
+// lower half, median speed; the particles more than 3 h from the side walls), and, over
+// the same last 0.5 s, the walls' load, the floor's first sample layer and rows 1-4.
 FloorResult measure_floor(const std::vector<std::string>& set) {
   const Scene scene = load_scene(kTank, set);
   const double h = scene.spacing, rho0 = scene.solver.rest_density, g = scene.solver.gravity.norm();
   const double width = 0.4, from = scene.time.duration - 0.5;
-  Simulation sim(scene);
-  SolverProbe probe(sim);
-  const double weight = sim.fluid_mass() * static_cast<double>(sim.fluid().size()) * g;
-  FloorResult r;
-  double load = 0, bottom_p = 0, bottom_d = 0, sample_p = 0, sample_d = 0, iterations = 0;
-  std::vector<double> row_p(4, 0.0), row_d(4, 0.0), bin_p, bin_d;
-  std::vector<long> bin_n;
-  double floor_depth = 0;  // the last surface, as in run_hydrostatic
+  double load = 0, sample_p = 0, sample_d = 0, iterations = 0;
+  std::vector<double> row_p(4, 0.0), row_d(4, 0.0);
   long steps = 0, measured = 0;
   const auto inside = [&](const Vec2& x) { return x.x() >= 3 * h && x.x() <= width - 3 * h; };
-  while (!sim.finished()) {
-    const StepStats st = sim.step();
+  const auto observe = [&](Simulation& sim, const StepStats& st) {
     ++steps;
     iterations += st.iterations;
-    if (st.time < from) continue;
+    if (st.time < from) return;
     ++measured;
-    load += probe.boundary_pressure_force().y() / weight;
+    const double weight = sim.fluid_mass() * static_cast<double>(sim.fluid().size()) * g;
+    load += SolverProbe(sim).boundary_pressure_force().y() / weight;
     const FluidParticles& f = sim.fluid();
     double top = -std::numeric_limits<double>::infinity();
     for (const Vec2& x : f.x) top = std::max(top, x.y());
-    const double surface = top + 0.5 * h;
+    const double surface = top + 0.5 * h;  // as in run_hydrostatic
     for (Index i = 0; i < f.size(); ++i) {
       const Vec2 x = f.x[i];
-      if (!inside(x)) continue;
-      const double d = surface - x.y();
-      const auto bin = static_cast<std::size_t>(std::max(0.0, d / (2 * h)));
-      if (bin >= bin_p.size()) {
-        bin_p.resize(bin + 1, 0.0);
-        bin_d.resize(bin + 1, 0.0);
-        bin_n.resize(bin + 1, 0);
-      }
-      bin_p[bin] += f.p[i];
-      bin_d[bin] += d;
-      ++bin_n[bin];
-      if (x.y() < h) {
-        bottom_p += f.p[i];
-        bottom_d += d;
-      }
       const auto row = static_cast<std::size_t>(std::max(0.0, x.y() / h));
-      if (row < row_p.size()) {
-        row_p[row] += f.p[i];
-        row_d[row] += d;
-      }
+      if (!inside(x) || row >= row_p.size()) continue;
+      row_p[row] += f.p[i];
+      row_d[row] += surface - x.y();
     }
     const BoundaryParticles& b = sim.boundary();
     for (Index k = 0; k < b.size(); ++k)
@@ -98,26 +77,17 @@ FloorResult measure_floor(const std::vector<std::string>& set) {
         sample_p += b.p[k];
         sample_d += surface - b.x[k].y();
       }
-    floor_depth = surface;
-  }
-  double half_p = 0, half_d = 0;
-  for (std::size_t k = 0; k < bin_p.size(); ++k) {
-    if (bin_n[k] > 0 && bin_d[k] / static_cast<double>(bin_n[k]) >= 0.5 * floor_depth) {
-      half_p += bin_p[k];
-      half_d += bin_d[k];
-    }
-  }
+  };
+  const analysis::HydrostaticResult hr = analysis::run_hydrostatic(scene, width, from, false, observe);
   const double rho_g = rho0 * g;
+  FloorResult r;
   r.load_ratio = load / static_cast<double>(measured);
-  r.bottom_row = bottom_p / (rho_g * bottom_d);
-  r.lower_half = half_p / (rho_g * half_d);
+  r.bottom_row = hr.bottom_row_ratio;
+  r.lower_half = hr.lower_half_ratio;
   r.samples = sample_p / (rho_g * sample_d);
   r.floor_line = 0.5 * (r.bottom_row + r.samples);
   for (std::size_t k = 0; k < row_p.size(); ++k) r.rows.push_back(row_p[k] / (rho_g * row_d[k]));
-  std::vector<double> speed;
-  for (const Vec2& v : sim.fluid().v) speed.push_back(v.norm());
-  std::nth_element(speed.begin(), speed.begin() + static_cast<std::ptrdiff_t>(speed.size() / 2), speed.end());
-  r.median_speed = speed[speed.size() / 2];
+  r.median_speed = hr.median_speed_end;
   r.iterations_per_step = iterations / static_cast<double>(steps);
   return r;
 }

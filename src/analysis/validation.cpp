@@ -40,7 +40,8 @@ double median_speed(const Simulation& sim) {
 
 // --- hydrostatic tank ----------------------------------------------------------------------
 
-HydrostaticResult run_hydrostatic(const Scene& scene, double width, double average_from, bool zero_pressure_wall) {
+HydrostaticResult run_hydrostatic(const Scene& scene, double width, double average_from, bool zero_pressure_wall,
+                                  const std::function<void(Simulation&, const StepStats&)>& after_step) {
   Simulation sim(scene);
   const double h = scene.spacing, rho0 = scene.solver.rest_density, g = gravity_magnitude(scene);
   const double bin = 2 * h;
@@ -53,6 +54,7 @@ HydrostaticResult run_hydrostatic(const Scene& scene, double width, double avera
     const StepStats st = sim.step();
     ++r.steps;
     r.capped += scene.solver.type == SolverType::IISPH && st.iterations >= scene.solver.max_iterations;
+    if (after_step) after_step(sim, st);
     if (st.time < average_from) continue;
     const FluidParticles& f = sim.fluid();
     double top = -std::numeric_limits<double>::infinity();

@@ -3,11 +3,13 @@
 // with rho0 g d) and the dam break against Martin & Moyce's 1952 experiment (surge front
 // over time). Shared by `sluice validate` and the tests, so the figure a user reproduces
 // is computed by the code CI checks.
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "scene/scene.h"
+#include "solver/simulation.h"
 
 namespace sluice::analysis {
 
@@ -44,7 +46,9 @@ struct HydrostaticResult {
 // average is not. Bins deeper than 3h are checked; with `zero_pressure_wall` (p_b = 0,
 // whose floor rows carry up to ~1.75 rho0 g d, thesis section 4.2.3) the rows within 3h
 // of the floor are left out of the check and reported as floor_ratio.
-HydrostaticResult run_hydrostatic(const Scene& scene, double width, double average_from, bool zero_pressure_wall);
+// `after_step`, when given, is called after every step (for measurements of its own).
+HydrostaticResult run_hydrostatic(const Scene& scene, double width, double average_from, bool zero_pressure_wall,
+                                  const std::function<void(Simulation&, const StepStats&)>& after_step = {});
 
 // The six standard cases: {IISPH, WCSPH} x {extrapolation, mirroring, zero}, as overrides
 // of scenes/validation/hydrostatic.json, with the tolerances the tests hold them to.
