@@ -54,7 +54,9 @@ SolverSettings read_solver(Reader& r, const Context& ctx) {
   s.pressure_init = r.enumeration("pressure_init", s.pressure_init,
                                   {{"warm", PressureInit::WarmStart}, {"thesis", PressureInit::Thesis}});
   s.pressure_solver = r.enumeration("pressure_solver", s.pressure_solver,
-                                    {{"jacobi", PressureSolver::Jacobi}, {"chebyshev", PressureSolver::Chebyshev}});
+                                    {{"jacobi", PressureSolver::Jacobi},
+                                     {"chebyshev", PressureSolver::Chebyshev},
+                                     {"multilevel", PressureSolver::Multilevel}});
   s.chebyshev_rho = r.number("chebyshev_rho", s.chebyshev_rho, Range::closed_open(0, 1));
   // Absent or null: the scene's default (wcsph_default_stiffness), set in parse_scene once
   // the fluid exists.

@@ -1,6 +1,8 @@
 #include "solver/simulation.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 
 #include "core/parallel.h"
 #include "solver/internal.h"
@@ -160,6 +162,11 @@ void Simulation::iterate_pressure(double dt, Index active_samples, StepStats& st
   double avg = 0.0;
   PressureTerms terms = pressure_terms(dt);
   const bool chebyshev = s.pressure_solver == PressureSolver::Chebyshev;
+  const bool multilevel = s.pressure_solver == PressureSolver::Multilevel;
+  static const int ml_first = getenv("ML_FIRST") ? atoi(getenv("ML_FIRST")) : 1;
+  static const int ml_every = getenv("ML_EVERY") ? atoi(getenv("ML_EVERY")) : 2;
+  int extra = 0;
+  bool coarse_ready = false, corrected = false;
   if (chebyshev) {
     scratch_->p_prev = fluid_.p;
     scratch_->pb_prev = boundary_.p;
@@ -174,7 +181,17 @@ void Simulation::iterate_pressure(double dt, Index active_samples, StepStats& st
     // their pressures lag the fluid's and stop being constraint forces.
     if (solved_boundary && active_samples > 0) avg = std::max(avg, jacobi_update_boundary(terms) / active_samples);
     ++l;
-  } while ((avg > s.tolerance_percent || l < s.min_iterations) && l < s.max_iterations);
+    if (multilevel && getenv("ML_DEBUG")) fprintf(stderr, "sweep %d avg %.4f\n", l, avg);
+    static const bool ml_always = getenv("ML_ALWAYS") != nullptr;
+    corrected = false;
+    if (multilevel && (avg > s.tolerance_percent || (ml_always && !coarse_ready)) && l >= ml_first &&
+        (l - ml_first) % ml_every == 0) {
+      corrected = true;
+      if (!coarse_ready) multilevel_setup(terms);
+      coarse_ready = true;
+      extra += multilevel_correction(terms);
+    }
+  } while ((avg > s.tolerance_percent || l < s.min_iterations || corrected) && l < s.max_iterations);
   // Chebyshev: the last extrapolation is unchecked (Eq. 23 was measured at p_k, before
   // it) and can overshoot where the clamp is active; keep the iterate that was measured.
   if (terms.chebyshev > 0.0) {
@@ -189,7 +206,7 @@ void Simulation::iterate_pressure(double dt, Index active_samples, StepStats& st
   update_boundary_pressure();
   compute_pressure_acceleration();
   if (has_moving_boundaries()) add_boundary_pressure_work(dt);
-  st.iterations = l;
+  st.iterations = l + extra;  // a coarse correction counts its applications of A
   st.avg_error_percent = avg;
   st.max_error_percent = parallel_max(n, 0.0, [&](Index i) { return scratch_->err[i]; });
 }

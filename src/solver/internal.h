@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/types.h"
@@ -39,6 +40,7 @@ struct SolverScratch {
   std::vector<double> p_prev, pb_prev;
   std::vector<double> volume;  // m / rho_i of fluid particles (apply_nonpressure)
   std::vector<double> work;    // boundary work on each fluid particle in this step [J/m]
+  std::shared_ptr<struct MultilevelData> multilevel;  // the two-level solve's coarse level
 };
 
 }  // namespace sluice

@@ -20,6 +20,16 @@ const char* to_string(BoundaryPressure b) {
 
 const char* to_string(PressureInit p) { return p == PressureInit::Thesis ? "thesis" : "warm"; }
 
-const char* to_string(PressureSolver p) { return p == PressureSolver::Chebyshev ? "chebyshev" : "jacobi"; }
+const char* to_string(PressureSolver p) {
+  switch (p) {
+    case PressureSolver::Jacobi:
+      return "jacobi";
+    case PressureSolver::Chebyshev:
+      return "chebyshev";
+    case PressureSolver::Multilevel:
+      return "multilevel";
+  }
+  return "?";
+}
 
 }  // namespace sluice

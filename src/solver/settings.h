@@ -31,6 +31,7 @@ enum class PressureInit {
 enum class PressureSolver {
   Jacobi,     // Algorithm 2: relaxed Jacobi (Eq. 21)
   Chebyshev,  // the same sweeps, each extrapolated by Chebyshev's semi-iteration (chebyshev_rho)
+  Multilevel,  // Jacobi sweeps with a Galerkin coarse correction (solver/pressure/multilevel.cpp)
 };
 
 const char* to_string(SolverType t);

@@ -24,6 +24,7 @@ class SimulationUnstable : public std::runtime_error {
 };
 
 struct SolverScratch;  // per-step arrays of the pressure solvers (solver/internal.h)
+struct MultilevelData;  // the two-level solve's coarse level (solver/pressure/multilevel.h)
 
 double lattice_kernel_sum(const CubicSpline2D& kernel);
 
@@ -146,6 +147,10 @@ class Simulation {
   double jacobi_sweep(Index block,
                       const PressureTerms& t);  // Eq. 24, then 20, 21, 23 for all; returns the sum of Eq. 23
   void sweep_range(Index begin, Index end, Index block, const PressureTerms& t);
+  // The two-level solve (solver/pressure/multilevel.cpp).
+  void assemble_pressure_matrix(const PressureTerms& t, MultilevelData& ml) const;  // A of Eq. 20 as a sparse matrix
+  void multilevel_setup(const PressureTerms& t);       // active set, aggregates, R A P
+  int multilevel_correction(const PressureTerms& t);   // x += P (R A P)^-1 R (s - A x); returns A's applications
 
   // Boundaries (chapter 4).
   void move_boundaries(double dt);  // scripted poses at time_ -> x, v, a of moving samples
