@@ -189,7 +189,8 @@ void Simulation::iterate_pressure(double dt, Index active_samples, StepStats& st
       corrected = true;
       if (!coarse_ready) multilevel_setup(terms);
       coarse_ready = true;
-      extra += multilevel_correction(terms);
+      multilevel_correction(terms);
+      ++extra;
     }
   } while ((avg > s.tolerance_percent || l < s.min_iterations || corrected) && l < s.max_iterations);
   // Chebyshev: the last extrapolation is unchecked (Eq. 23 was measured at p_k, before

@@ -40,7 +40,7 @@ struct SolverScratch {
   std::vector<double> p_prev, pb_prev;
   std::vector<double> volume;  // m / rho_i of fluid particles (apply_nonpressure)
   std::vector<double> work;    // boundary work on each fluid particle in this step [J/m]
-  std::shared_ptr<struct MultilevelData> multilevel;  // the two-level solve's coarse level
+  std::shared_ptr<struct CoarseLevel> coarse;  // the two-level solve's coarse level (multilevel.h)
 };
 
 }  // namespace sluice

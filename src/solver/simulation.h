@@ -24,7 +24,7 @@ class SimulationUnstable : public std::runtime_error {
 };
 
 struct SolverScratch;  // per-step arrays of the pressure solvers (solver/internal.h)
-struct MultilevelData;  // the two-level solve's coarse level (solver/pressure/multilevel.h)
+struct CoarseLevel;  // the two-level solve's coarse level (solver/pressure/multilevel.h)
 
 double lattice_kernel_sum(const CubicSpline2D& kernel);
 
@@ -148,9 +148,10 @@ class Simulation {
                       const PressureTerms& t);  // Eq. 24, then 20, 21, 23 for all; returns the sum of Eq. 23
   void sweep_range(Index begin, Index end, Index block, const PressureTerms& t);
   // The two-level solve (solver/pressure/multilevel.cpp).
-  void assemble_pressure_matrix(const PressureTerms& t, MultilevelData& ml) const;  // A of Eq. 20 as a sparse matrix
-  void multilevel_setup(const PressureTerms& t);       // active set, aggregates, R A P
-  int multilevel_correction(const PressureTerms& t);   // x += P (R A P)^-1 R (s - A x); returns A's applications
+  void aggregate_unknowns(CoarseLevel& cl) const;                              // the unknowns by cells
+  void assemble_coarse_operator(const PressureTerms& t, CoarseLevel& cl) const;  // P^T A P
+  void multilevel_setup(const PressureTerms& t);                                 // aggregates, P^T A P, its LU
+  void multilevel_correction(const PressureTerms& t);                            // x += P A_c^-1 P^T (s - A x)
 
   // Boundaries (chapter 4).
   void move_boundaries(double dt);  // scripted poses at time_ -> x, v, a of moving samples

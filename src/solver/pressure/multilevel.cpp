@@ -1,15 +1,15 @@
 // The two-level pressure solve (solver.pressure_solver = "multilevel"): relaxed Jacobi
-// sweeps (Algorithm 2) with a Galerkin coarse correction of the smooth, column-long modes
-// that the sweeps damp slowly (issue 37; aggregation after Trask et al. 2015 and Osaki et
-// al. 2023, on square cells).
+// sweeps (Algorithm 2) and, once per solve after the first sweep, a Galerkin coarse
+// correction of the smooth, column-long modes that the sweeps damp slowly (issue 37;
+// aggregation by cells after Osaki et al. 2023, Galerkin operator as in algebraic
+// multigrid for SPH, Trask et al. 2015).
 #include "solver/pressure/multilevel.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <map>
-#include <tuple>
+#include <stdexcept>
 
 #include "core/parallel.h"
 #include "solver/internal.h"
@@ -19,223 +19,194 @@
 namespace sluice {
 
 namespace {
-using Triplet = Eigen::Triplet<double>;
 double env_number(const char* name, double fallback) {
   const char* v = std::getenv(name);
   return v ? std::atof(v) : fallback;
 }
+
+// A particle's acceleration (Eq. 24) and its (Ap) contributions as functions of the
+// aggregates' pressures: at most this many distinct aggregates each.
+struct AggregateTerms {
+  static constexpr int kMax = 24;
+  Index id[kMax];
+  Vec2 c[kMax];
+  int size = 0;
+  void add(Index a, const Vec2& v) {
+    if (a < 0) return;
+    for (int k = 0; k < size; ++k)
+      if (id[k] == a) {
+        c[k] += v;
+        return;
+      }
+    if (size == kMax) throw std::runtime_error("multilevel: a particle touches more than 24 aggregates");
+    id[size] = a;
+    c[size] = v;
+    ++size;
+  }
+};
+
+void add_entry(std::vector<std::pair<Index, double>>& row, Index j, double v) {
+  for (auto& e : row)
+    if (e.first == j) {
+      e.second += v;
+      return;
+    }
+  row.emplace_back(j, v);
+}
 }  // namespace
 
-// A of Eq. 20 (fluid rows) and of the samples' constraints (prepare_solved_boundary) as
-// D G: G maps the unknowns to the accelerations of Eq. 24, D the accelerations to (Ap).
-void Simulation::assemble_pressure_matrix(const PressureTerms& t, MultilevelData& ml) const {
-  const Index n = fluid_.size(), nb = boundary_.size(), unknowns = n + nb;
+// Aggregates: the unknowns with p > 0 after the first sweep (fluid) or a row of their own
+// with p > 0 (samples of pressure boundaries), grouped by square cells of kCell spacings,
+// numbered in order of first appearance.
+void Simulation::aggregate_unknowns(CoarseLevel& cl) const {
+  const Index n = fluid_.size(), nb = boundary_.size();
   const bool samples = settings_.boundary_pressure == BoundaryPressure::Solved;
-  const double m = mass_, dt = t.dt, inv_rho0_2 = 1.0 / (settings_.rest_density * settings_.rest_density);
-  std::vector<Triplet> g, d;
-  g.reserve(static_cast<size_t>(2 * (ff_.pairs() + fb_.pairs() + n)));
-  d.reserve(static_cast<size_t>(2 * (ff_.pairs() + bf_.pairs() + n)));
+  static const double cell_factor = env_number("ML_CELL", 4.0);
+  const double inv_cell = 1.0 / (cell_factor * setup_.spacing);
+  cl.aggregate.assign(static_cast<size_t>(n + nb), -1);
+  auto position = [&](Index u) { return u < n ? fluid_.x[u] : boundary_.x[u - n]; };
+  auto active = [&](Index u) {
+    return u < n ? fluid_.p[u] > 0.0 : samples && scratch_->bnd_aii[u - n] != 0.0 && boundary_.p[u - n] > 0.0;
+  };
+  long x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+  bool any = false;
+  for (Index u = 0; u < n + nb; ++u) {
+    if (!active(u)) continue;
+    const Vec2 x = position(u);
+    const long cx = static_cast<long>(std::floor(x.x() * inv_cell)), cy = static_cast<long>(std::floor(x.y() * inv_cell));
+    if (!any) {
+      x0 = x1 = cx;
+      y0 = y1 = cy;
+      any = true;
+    }
+    x0 = std::min(x0, cx), x1 = std::max(x1, cx), y0 = std::min(y0, cy), y1 = std::max(y1, cy);
+  }
+  const long nx = x1 - x0 + 1, ny = y1 - y0 + 1;
+  cl.cell_aggregate.assign(static_cast<size_t>(std::max(0L, nx * ny)), -1);
+  Index count = 0;
+  for (Index u = 0; u < n + nb; ++u) {
+    if (!active(u)) continue;
+    const Vec2 x = position(u);
+    const long cx = static_cast<long>(std::floor(x.x() * inv_cell)) - x0,
+               cy = static_cast<long>(std::floor(x.y() * inv_cell)) - y0;
+    Index& a = cl.cell_aggregate[static_cast<size_t>(cy * nx + cx)];
+    if (a < 0) a = count++;
+    cl.aggregate[u] = a;
+  }
+  cl.aggregates = count;
+}
+
+// A_c = P^T A P for P the aggregates' indicator. With A = D G (G: the unknowns to the
+// accelerations of Eq. 24; D: the accelerations to (Ap) of Eq. 20 and the samples' rows),
+//   A_c[I][J] = sum_i h_iI . g_iJ,
+// g_iJ = d a_i / d p_J and h_iI = d (sum_{u in I} (Ap)_u) / d a_i, both from particle i's
+// own pairs: a_i enters its own row and, through the pair's antisymmetric gradient, the
+// rows of its fluid neighbours and of its samples. Serial over i: the same bits always.
+void Simulation::assemble_coarse_operator(const PressureTerms& t, CoarseLevel& cl) const {
+  const Index n = fluid_.size(), nb = boundary_.size();
+  const bool samples = settings_.boundary_pressure == BoundaryPressure::Solved;
+  const double m = mass_, dt = t.dt, g3_rho0 = t.gamma3_rho0 / (settings_.rest_density * settings_.rest_density);
+  const std::vector<Index>& agg = cl.aggregate;
+  cl.rows.resize(static_cast<size_t>(cl.aggregates));
+  for (auto& r : cl.rows) r.clear();
+  AggregateTerms g, h;
   for (Index i = 0; i < n; ++i) {
+    g.size = h.size = 0;
     const double inv2 = 1.0 / (fluid_.rho[i] * fluid_.rho[i]);
     Vec2 sum = Vec2::Zero();
     for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
       const Index f = ff_.j[k];
       const Vec2 gw = ff_.grad[k].cast<double>();
       sum += gw;
-      const double cf = -m / (fluid_.rho[f] * fluid_.rho[f]);
-      g.emplace_back(2 * i, f, cf * gw.x());
-      g.emplace_back(2 * i + 1, f, cf * gw.y());
-      d.emplace_back(i, 2 * f, -dt * m * gw.x());
-      d.emplace_back(i, 2 * f + 1, -dt * m * gw.y());
+      g.add(agg[f], (-m / (fluid_.rho[f] * fluid_.rho[f])) * gw);
+      h.add(agg[f], (dt * m) * gw);
     }
-    const Vec2 own = -inv2 * (m * sum + t.c_gamma3 * scratch_->grad_b[i]);
-    g.emplace_back(2 * i, i, own.x());
-    g.emplace_back(2 * i + 1, i, own.y());
-    const Vec2 div = dt * (m * sum + t.gamma2 * scratch_->grad_b[i]);
-    d.emplace_back(i, 2 * i, div.x());
-    d.emplace_back(i, 2 * i + 1, div.y());
+    g.add(agg[i], -inv2 * (m * sum + t.c_gamma3 * scratch_->grad_b[i]));
+    h.add(agg[i], dt * (m * sum + t.gamma2 * scratch_->grad_b[i]));
     if (samples)
       for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
         const Index b = fb_.j[k];
-        const Vec2 c = -(t.gamma3_rho0 * boundary_.volume[b] * inv_rho0_2) * fb_.grad[k].cast<double>();
-        g.emplace_back(2 * i, n + b, c.x());
-        g.emplace_back(2 * i + 1, n + b, c.y());
+        const Vec2 gw = fb_.grad[k].cast<double>();
+        g.add(agg[n + b], -(g3_rho0 * boundary_.volume[b]) * gw);
+        h.add(agg[n + b], (dt * m) * gw);
       }
+    for (int a = 0; a < h.size; ++a)
+      for (int c = 0; c < g.size; ++c) add_entry(cl.rows[static_cast<size_t>(h.id[a])], g.id[c], h.c[a].dot(g.c[c]));
   }
+  (void)nb;
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (Index r = 0; r < cl.aggregates; ++r)
+    for (const auto& e : cl.rows[static_cast<size_t>(r)]) triplets.emplace_back(r, e.first, e.second);
+  cl.a_c.resize(cl.aggregates, cl.aggregates);
+  cl.a_c.setFromTriplets(triplets.begin(), triplets.end());
+  cl.a_c.makeCompressed();
+}
+
+// The coarse level of this solve: aggregates, R A P, its LU factors.
+void Simulation::multilevel_setup(const PressureTerms& t) {
+  if (!scratch_->coarse) scratch_->coarse = std::make_shared<CoarseLevel>();
+  CoarseLevel& cl = *scratch_->coarse;
+  solver_detail::Stopwatch sw;
+  aggregate_unknowns(cl);
+  const double t_agg = sw.ms();
+  assemble_coarse_operator(t, cl);
+  const double t_asm = sw.ms();
+  static const bool use_lu = env_number("ML_LU", 0.0) != 0.0;
+  if (use_lu) {
+    cl.lu.compute(cl.a_c);
+    cl.factorised = cl.lu.info() == Eigen::Success;
+  } else {
+    cl.sym = CoarseLevel::Matrix(cl.a_c.transpose());
+    cl.sym = -0.5 * (cl.sym + cl.a_c);
+    cl.ldlt.compute(cl.sym);
+    cl.factorised = cl.ldlt.info() == Eigen::Success;
+  }
+  if (std::getenv("ML_DEBUG"))
+    std::fprintf(stderr, "ml: aggregates %ld nnz %ld lu %d ms: aggregate %.2f assemble %.2f factor %.2f\n",
+                 static_cast<long>(cl.aggregates), static_cast<long>(cl.a_c.nonZeros()), cl.factorised ? 1 : 0, t_agg,
+                 t_asm - t_agg, sw.ms() - t_asm);
+}
+
+// One coarse correction: r = s - A x (Eq. 19, 20 and the samples' rows, from the current
+// pressures), then x_u += (A_c^-1 P^T r)_{I(u)} on the aggregated unknowns, clamped at zero
+// as in Eq. 21. Costs one application of A.
+void Simulation::multilevel_correction(const PressureTerms& t) {
+  CoarseLevel& cl = *scratch_->coarse;
+  if (!cl.factorised) return;
+  const Index n = fluid_.size(), nb = boundary_.size();
+  const bool samples = settings_.boundary_pressure == BoundaryPressure::Solved;
+  update_boundary_pressure();
+  compute_pressure_acceleration();
+  std::vector<double>& r = scratch_->err;  // reused: the next sweep overwrites it
+  parallel_for(n, [&](Index i) { r[i] = scratch_->s[i] - pressure_operator_of(i, t); });
+  cl.rc = Eigen::VectorXd::Zero(cl.aggregates);
+  for (Index i = 0; i < n; ++i)
+    if (cl.aggregate[i] >= 0) cl.rc[cl.aggregate[i]] += r[i];
   if (samples)
     for (Index b = 0; b < nb; ++b)
-      for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) {
-        const Index f = bf_.j[k];
-        const Vec2 gw = bf_.grad[k].cast<double>();
-        d.emplace_back(n + b, 2 * f, -dt * m * gw.x());
-        d.emplace_back(n + b, 2 * f + 1, -dt * m * gw.y());
-      }
-  Eigen::SparseMatrix<double> gm(2 * n, unknowns), dm(unknowns, 2 * n);
-  gm.setFromTriplets(g.begin(), g.end());
-  dm.setFromTriplets(d.begin(), d.end());
-  ml.a = dm * gm;
-}
-
-// The coarse level for this solve: A, the active set (the unknowns the first sweep left
-// above zero; those clamped stay out for the solve), aggregates of the active unknowns
-// by cells of ML_CELL spacings, P (plain or smoothed aggregation) and R A P, factorised.
-void Simulation::multilevel_setup(const PressureTerms& t) {
-  if (!scratch_->multilevel) scratch_->multilevel = std::make_shared<MultilevelData>();
-  MultilevelData& ml = *scratch_->multilevel;
-  const Index n = fluid_.size(), nb = boundary_.size(), unknowns = n + nb;
-  const bool samples = settings_.boundary_pressure == BoundaryPressure::Solved;
-  assemble_pressure_matrix(t, ml);
-  ml.active.assign(static_cast<size_t>(unknowns), -1);
-  Index na = 0;
-  for (Index i = 0; i < n; ++i)
-    if (fluid_.p[i] > 0.0) ml.active[i] = na++;
-  static const bool coarse_samples = env_number("ML_NO_SAMPLES", 0.0) == 0.0;
-  if (samples && coarse_samples)
-    for (Index b = 0; b < nb; ++b)
-      if (scratch_->bnd_aii[b] != 0.0 && boundary_.p[b] > 0.0) ml.active[n + b] = na++;
-  ml.n_active = na;
-  // Aggregates: cells of the positions, numbered in order of first appearance.
-  static const double cell_factor = env_number("ML_CELL", 4.0);
-  static const bool own_samples = env_number("ML_OWN_SAMPLES", 0.0) != 0.0;
-  const double inv_cell = 1.0 / (cell_factor * setup_.spacing);
-  std::map<std::tuple<int, long, long>, Index> cells;
-  std::vector<Triplet> sel, pt;
-  for (Index u = 0; u < unknowns; ++u) {
-    if (ml.active[u] < 0) continue;
-    const Vec2 x = u < n ? fluid_.x[u] : boundary_.x[u - n];
-    const auto key = std::make_tuple(own_samples && u >= n ? 1 : 0, static_cast<long>(std::floor(x.x() * inv_cell)),
-                                     static_cast<long>(std::floor(x.y() * inv_cell)));
-    const auto it = cells.emplace(key, static_cast<Index>(cells.size())).first;
-    sel.emplace_back(ml.active[u], u, 1.0);
-    pt.emplace_back(ml.active[u], it->second, 1.0);
-  }
-  const Index nc = static_cast<Index>(cells.size());
-  Eigen::SparseMatrix<double> s(na, unknowns), p0(na, nc);
-  s.setFromTriplets(sel.begin(), sel.end());
-  p0.setFromTriplets(pt.begin(), pt.end());
-  const Eigen::SparseMatrix<double> aa = s * ml.a * s.transpose();
-  static const double smooth = env_number("ML_SMOOTH", 0.0);
-  if (smooth > 0.0) {
-    Eigen::VectorXd dinv = aa.diagonal();
-    for (Index k = 0; k < na; ++k) dinv[k] = dinv[k] != 0.0 ? smooth / dinv[k] : 0.0;
-    const Eigen::SparseMatrix<double> ap0 = aa * p0;
-    ml.p = p0 - dinv.asDiagonal() * ap0;
+      if (cl.aggregate[n + b] >= 0) cl.rc[cl.aggregate[n + b]] += scratch_->bnd_s[b] - sample_operator_of(b, t);
+  static const bool use_lu = env_number("ML_LU", 0.0) != 0.0;
+  static const int refine = static_cast<int>(env_number("ML_REFINE", 1.0));
+  if (use_lu) {
+    cl.ec = cl.lu.solve(cl.rc);
   } else {
-    ml.p = p0;
-  }
-  ml.a_c = Eigen::SparseMatrix<double>(ml.p.transpose()) * aa * ml.p;
-  ml.a_c.makeCompressed();
-  ml.lu.compute(ml.a_c);
-  ml.ok = ml.lu.info() == Eigen::Success;
-  if (std::getenv("ML_DEBUG"))
-    std::fprintf(stderr, "ml: unknowns %ld active %ld aggregates %ld nnz A %ld Ac %ld lu %d\n", (long)unknowns,
-                 (long)na, (long)nc, (long)ml.a.nonZeros(), (long)ml.a_c.nonZeros(), ml.ok ? 1 : 0);
-  if (std::getenv("ML_TEST")) {
-    // Synthetic: x* = rho0 g (top - y) on the active unknowns; one coarse solve from x = 0.
-    double top = -1e30;
-    for (Index i = 0; i < n; ++i) top = std::max(top, fluid_.x[i].y());
-    Eigen::VectorXd xs = Eigen::VectorXd::Zero(unknowns);
-    for (Index u = 0; u < unknowns; ++u)
-      if (ml.active[u] >= 0) xs[u] = 1000.0 * 9.81 * (top - (u < n ? fluid_.x[u].y() : boundary_.x[u - n].y()));
-    const Eigen::VectorXd b = ml.a * xs;
-    Eigen::VectorXd ba(na);
-    for (Index u = 0; u < unknowns; ++u)
-      if (ml.active[u] >= 0) ba[ml.active[u]] = b[u];
-    const Eigen::VectorXd ea = ml.p * ml.lu.solve(Eigen::VectorXd(ml.p.transpose() * ba));
-    for (Index i = 0; i < n; i += n / 20)
-      if (ml.active[i] >= 0)
-        std::fprintf(stderr, "ml test: y %.3f x* %.1f e %.1f  (A x*)_i %.3g\n", fluid_.x[i].y(), xs[i],
-                     ea[ml.active[i]], b[i]);
-    const Eigen::VectorXd one = Eigen::VectorXd::Ones(unknowns);
-    const Eigen::VectorXd a1 = ml.a * one;
-    double asym = (Eigen::SparseMatrix<double>(ml.a.transpose()) - ml.a).norm() / ml.a.norm();
-    std::fprintf(stderr, "ml test: |A-A^T|/|A| %.3g, |A 1| %.3g vs |A x*|/|x*|inf %.3g\n", asym, a1.norm(),
-                 b.norm() / xs.maxCoeff());
-  }
-  if (std::getenv("ML_CHECK")) {
-    // A x against the sweep's operator at the current pressures.
-    Eigen::VectorXd x(unknowns);
-    for (Index i = 0; i < n; ++i) x[i] = fluid_.p[i];
-    for (Index b = 0; b < nb; ++b) x[n + b] = samples ? boundary_.p[b] : 0.0;
-    const Eigen::VectorXd ax = ml.a * x;
-    const_cast<Simulation*>(this)->compute_pressure_acceleration();
-    double worst = 0.0, scale = 0.0, dworst = 0.0;
-    for (Index i = 0; i < n; ++i) {
-      const double op = pressure_operator_of(i, t);
-      worst = std::max(worst, std::abs(op - ax[i]));
-      scale = std::max(scale, std::abs(op));
-      dworst = std::max(dworst, std::abs(ml.a.coeff(i, i) - scratch_->a_ii[i]) / std::abs(scratch_->a_ii[i]));
-    }
-    double bworst = 0.0;
-    if (samples)
-      for (Index b = 0; b < nb; ++b) bworst = std::max(bworst, std::abs(sample_operator_of(b, t) - ax[n + b]));
-    std::fprintf(stderr, "ml check: |Ax - op| fluid %.3g (scale %.3g) samples %.3g, diag rel %.3g\n", worst, scale,
-                 bworst, dworst);
-  }
-}
-
-// One coarse correction: r = s - A x, x_active += alpha P (R A P)^-1 R r, clamped at zero
-// like Eq. 21. alpha = ML_ALPHA (a number), or the residual-minimising step when it is 0.
-// Returns the applications of A it cost (1, or 2 with the line search).
-int Simulation::multilevel_correction(const PressureTerms& t) {
-  MultilevelData& ml = *scratch_->multilevel;
-  if (!ml.ok) return 0;
-  const Index n = fluid_.size(), nb = boundary_.size(), unknowns = n + nb;
-  const bool samples = settings_.boundary_pressure == BoundaryPressure::Solved;
-  ml.x.resize(unknowns);
-  Eigen::VectorXd rhs(unknowns);
-  for (Index i = 0; i < n; ++i) {
-    ml.x[i] = fluid_.p[i];
-    rhs[i] = scratch_->s[i];
-  }
-  for (Index b = 0; b < nb; ++b) {
-    ml.x[n + b] = samples ? boundary_.p[b] : 0.0;
-    rhs[n + b] = samples ? scratch_->bnd_s[b] : 0.0;
-  }
-  const Eigen::VectorXd r = rhs - ml.a * ml.x;
-  Eigen::VectorXd ra(ml.n_active);
-  for (Index u = 0; u < unknowns; ++u)
-    if (ml.active[u] >= 0) ra[ml.active[u]] = r[u];
-  const Eigen::VectorXd ec = ml.lu.solve(Eigen::VectorXd(ml.p.transpose() * ra));
-  const Eigen::VectorXd ea = ml.p * ec;
-  static const double fixed_alpha = env_number("ML_ALPHA", 1.0);
-  double alpha = fixed_alpha;
-  int cost = 1;
-  if (alpha == 0.0) {
-    Eigen::VectorXd e = Eigen::VectorXd::Zero(unknowns);
-    for (Index u = 0; u < unknowns; ++u)
-      if (ml.active[u] >= 0) e[u] = ea[ml.active[u]];
-    const Eigen::VectorXd ae = ml.a * e;
-    double num = 0.0, den = 0.0;
-    for (Index u = 0; u < unknowns; ++u)
-      if (ml.active[u] >= 0) {
-        num += r[u] * ae[u];
-        den += ae[u] * ae[u];
-      }
-    alpha = den > 0.0 ? num / den : 0.0;
-    cost = 2;
-  }
-  if (std::getenv("ML_DEBUG")) {
-    double pmax = 0.0;
-    for (Index i = 0; i < n; ++i) pmax = std::max(pmax, fluid_.p[i]);
-    std::fprintf(stderr, "ml: |r| %.4g alpha %.4g |e|max %.4g p max %.4g ec range %.4g %.4g\n", ra.norm(), alpha,
-                 ea.cwiseAbs().maxCoeff(), pmax, ec.minCoeff(), ec.maxCoeff());
+    cl.ec = -cl.ldlt.solve(cl.rc);
+    for (int k = 0; k < refine; ++k) cl.ec -= cl.ldlt.solve(Eigen::VectorXd(cl.rc - cl.a_c * cl.ec));
   }
   const double inv_rho0_2 = 1.0 / (settings_.rest_density * settings_.rest_density);
-  for (Index i = 0; i < n; ++i) {
-    if (ml.active[i] < 0) continue;
-    const double p = std::max(fluid_.p[i] + alpha * ea[ml.active[i]], 0.0);
+  parallel_for(n, [&](Index i) {
+    if (cl.aggregate[i] < 0) return;
+    const double p = std::max(fluid_.p[i] + cl.ec[cl.aggregate[i]], 0.0);
     fluid_.p[i] = p;
     scratch_->p_over_rho2[i] = p / (fluid_.rho[i] * fluid_.rho[i]);
-  }
+  });
   if (samples)
-    for (Index b = 0; b < nb; ++b) {
-      if (ml.active[n + b] < 0) continue;
-      const double p = std::max(boundary_.p[b] + alpha * ea[ml.active[n + b]], 0.0);
+    parallel_for(nb, [&](Index b) {
+      if (cl.aggregate[n + b] < 0) return;
+      const double p = std::max(boundary_.p[b] + cl.ec[cl.aggregate[n + b]], 0.0);
       boundary_.p[b] = p;
       scratch_->pb_over_rho2[b] = p * inv_rho0_2;
-    }
-  return cost;
+    });
 }
 
 }  // namespace sluice

@@ -1,10 +1,10 @@
 #pragma once
 // The coarse level of the two-level pressure solve (solver.pressure_solver = "multilevel",
-// issue 37): the PPE's operator A assembled as a sparse matrix over the fluid's and the
-// samples' pressures, the unknowns aggregated by square cells, and a Galerkin coarse
-// operator A_c = R A P (R = P^T) factorised once per solve. Serial: the same bits for any
-// thread count.
+// issue 37): the fluid's and the samples' pressures aggregated by square cells, and the
+// Galerkin operator A_c = P^T A P of the PPE (Eq. 20 and the samples' rows) over them,
+// factorised once per solve.
 #include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 #include <vector>
 
@@ -12,16 +12,21 @@
 
 namespace sluice {
 
-struct MultilevelData {
+struct CoarseLevel {
   using Matrix = Eigen::SparseMatrix<double>;
-  Matrix a;                // A over all unknowns: fluid 0..n-1, samples n..n+nb-1
-  std::vector<Index> active;  // unknown -> active index, -1 when held at p = 0
-  Index n_active = 0;
-  Matrix p;                // prolongation: active unknowns x aggregates
-  Matrix a_c;              // R A P
+  // Per unknown (fluid particles 0..n-1, then boundary samples): its aggregate, or -1 for
+  // one that the first sweep left clamped at p = 0 (it stays out for the solve).
+  std::vector<Index> aggregate;
+  Index aggregates = 0;
+  Matrix a_c;
   Eigen::SparseLU<Matrix> lu;
-  bool ok = false;
-  Eigen::VectorXd x, r, e;  // scratch
+  Matrix sym;                             // -(A_c + A_c^T) / 2
+  Eigen::SimplicialLDLT<Matrix> ldlt;     // its factors
+  bool factorised = false;
+  Eigen::VectorXd rc, ec;  // restricted residual, coarse correction
+  // Scratch of the aggregation (cell -> aggregate) and of the assembly (row I's entries).
+  std::vector<Index> cell_aggregate;
+  std::vector<std::vector<std::pair<Index, double>>> rows;
 };
 
 }  // namespace sluice
