@@ -45,14 +45,6 @@ struct AggregateTerms {
   }
 };
 
-void add_entry(std::vector<std::pair<Index, double>>& row, Index j, double v) {
-  for (auto& e : row)
-    if (e.first == j) {
-      e.second += v;
-      return;
-    }
-  row.emplace_back(j, v);
-}
 }  // namespace
 
 // Aggregates: the unknowns with p > 0 after the first sweep (fluid) or a row of their own
@@ -82,7 +74,11 @@ void Simulation::aggregate_unknowns(CoarseLevel& cl) const {
     x0 = std::min(x0, cx), x1 = std::max(x1, cx), y0 = std::min(y0, cy), y1 = std::max(y1, cy);
   }
   const long nx = x1 - x0 + 1, ny = y1 - y0 + 1;
+  cl.nx = nx;
+  cl.ny = ny;
   cl.cell_aggregate.assign(static_cast<size_t>(std::max(0L, nx * ny)), -1);
+  cl.cell_x.clear();
+  cl.cell_y.clear();
   Index count = 0;
   for (Index u = 0; u < n + nb; ++u) {
     if (!active(u)) continue;
@@ -90,7 +86,11 @@ void Simulation::aggregate_unknowns(CoarseLevel& cl) const {
     const long cx = static_cast<long>(std::floor(x.x() * inv_cell)) - x0,
                cy = static_cast<long>(std::floor(x.y() * inv_cell)) - y0;
     Index& a = cl.cell_aggregate[static_cast<size_t>(cy * nx + cx)];
-    if (a < 0) a = count++;
+    if (a < 0) {
+      a = count++;
+      cl.cell_x.push_back(static_cast<std::int32_t>(cx));
+      cl.cell_y.push_back(static_cast<std::int32_t>(cy));
+    }
     cl.aggregate[u] = a;
   }
   cl.aggregates = count;
@@ -101,43 +101,69 @@ void Simulation::aggregate_unknowns(CoarseLevel& cl) const {
 //   A_c[I][J] = sum_i h_iI . g_iJ,
 // g_iJ = d a_i / d p_J and h_iI = d (sum_{u in I} (Ap)_u) / d a_i, both from particle i's
 // own pairs: a_i enters its own row and, through the pair's antisymmetric gradient, the
-// rows of its fluid neighbours and of its samples. Serial over i: the same bits always.
+// rows of its fluid neighbours and of its samples. I and J lie within one support of i,
+// so within kReach cells of each other. Fixed chunks of particles, each summed in index
+// order into its own table, added in chunk order: the same bits for any thread count.
 void Simulation::assemble_coarse_operator(const PressureTerms& t, CoarseLevel& cl) const {
-  const Index n = fluid_.size(), nb = boundary_.size();
+  constexpr int kReach = 2, kSide = 2 * kReach + 1, kSlots = kSide * kSide;
+  constexpr Index kChunk = 16384;
+  const Index n = fluid_.size(), na = cl.aggregates;
+  const Index chunks = std::max<Index>(1, (n + kChunk - 1) / kChunk);
   const bool samples = settings_.boundary_pressure == BoundaryPressure::Solved;
   const double m = mass_, dt = t.dt, g3_rho0 = t.gamma3_rho0 / (settings_.rest_density * settings_.rest_density);
   const std::vector<Index>& agg = cl.aggregate;
-  cl.rows.resize(static_cast<size_t>(cl.aggregates));
-  for (auto& r : cl.rows) r.clear();
-  AggregateTerms g, h;
-  for (Index i = 0; i < n; ++i) {
-    g.size = h.size = 0;
-    const double inv2 = 1.0 / (fluid_.rho[i] * fluid_.rho[i]);
-    Vec2 sum = Vec2::Zero();
-    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
-      const Index f = ff_.j[k];
-      const Vec2 gw = ff_.grad[k].cast<double>();
-      sum += gw;
-      g.add(agg[f], (-m / (fluid_.rho[f] * fluid_.rho[f])) * gw);
-      h.add(agg[f], (dt * m) * gw);
-    }
-    g.add(agg[i], -inv2 * (m * sum + t.c_gamma3 * scratch_->grad_b[i]));
-    h.add(agg[i], dt * (m * sum + t.gamma2 * scratch_->grad_b[i]));
-    if (samples)
-      for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
-        const Index b = fb_.j[k];
-        const Vec2 gw = fb_.grad[k].cast<double>();
-        g.add(agg[n + b], -(g3_rho0 * boundary_.volume[b]) * gw);
-        h.add(agg[n + b], (dt * m) * gw);
+  cl.partial.assign(static_cast<size_t>(chunks * na * kSlots), 0.0);
+  auto slot = [&](Index a, Index b) {
+    const int dx = cl.cell_x[b] - cl.cell_x[a] + kReach, dy = cl.cell_y[b] - cl.cell_y[a] + kReach;
+    if (dx < 0 || dx >= kSide || dy < 0 || dy >= kSide)
+      throw std::logic_error("multilevel: coupled aggregates further apart than the reach");
+    return dy * kSide + dx;
+  };
+#pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
+  for (Index c = 0; c < chunks; ++c) {
+    double* table = cl.partial.data() + c * na * kSlots;
+    AggregateTerms g, h;
+    for (Index i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
+      g.size = h.size = 0;
+      const double inv2 = 1.0 / (fluid_.rho[i] * fluid_.rho[i]);
+      Vec2 sum = Vec2::Zero();
+      for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
+        const Index f = ff_.j[k];
+        const Vec2 gw = ff_.grad[k].cast<double>();
+        sum += gw;
+        g.add(agg[f], (-m / (fluid_.rho[f] * fluid_.rho[f])) * gw);
+        h.add(agg[f], (dt * m) * gw);
       }
-    for (int a = 0; a < h.size; ++a)
-      for (int c = 0; c < g.size; ++c) add_entry(cl.rows[static_cast<size_t>(h.id[a])], g.id[c], h.c[a].dot(g.c[c]));
+      g.add(agg[i], -inv2 * (m * sum + t.c_gamma3 * scratch_->grad_b[i]));
+      h.add(agg[i], dt * (m * sum + t.gamma2 * scratch_->grad_b[i]));
+      if (samples)
+        for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
+          const Index b = fb_.j[k];
+          const Vec2 gw = fb_.grad[k].cast<double>();
+          g.add(agg[fluid_.size() + b], -(g3_rho0 * boundary_.volume[b]) * gw);
+          h.add(agg[fluid_.size() + b], (dt * m) * gw);
+        }
+      for (int a = 0; a < h.size; ++a)
+        for (int b = 0; b < g.size; ++b) table[h.id[a] * kSlots + slot(h.id[a], g.id[b])] += h.c[a].dot(g.c[b]);
+    }
   }
-  (void)nb;
+  // Rows in order, each slot summed over the chunks in order.
   std::vector<Eigen::Triplet<double>> triplets;
-  for (Index r = 0; r < cl.aggregates; ++r)
-    for (const auto& e : cl.rows[static_cast<size_t>(r)]) triplets.emplace_back(r, e.first, e.second);
-  cl.a_c.resize(cl.aggregates, cl.aggregates);
+  triplets.reserve(static_cast<size_t>(na * 9));
+  for (Index r = 0; r < na; ++r)
+    for (int k = 0; k < kSlots; ++k) {
+      double v = 0.0;
+      bool any = false;
+      for (Index c = 0; c < chunks; ++c) {
+        const double x = cl.partial[static_cast<size_t>((c * na + r) * kSlots + k)];
+        v += x;
+        any = any || x != 0.0;
+      }
+      if (!any) continue;
+      const long cx = cl.cell_x[r] + k % kSide - kReach, cy = cl.cell_y[r] + k / kSide - kReach;
+      triplets.emplace_back(r, cl.cell_aggregate[static_cast<size_t>(cy * cl.nx + cx)], v);
+    }
+  cl.a_c.resize(na, na);
   cl.a_c.setFromTriplets(triplets.begin(), triplets.end());
   cl.a_c.makeCompressed();
 }

@@ -6,6 +6,7 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
+#include <cstdint>
 #include <vector>
 
 #include "core/types.h"
@@ -24,9 +25,14 @@ struct CoarseLevel {
   Eigen::SimplicialLDLT<Matrix> ldlt;     // its factors
   bool factorised = false;
   Eigen::VectorXd rc, ec;  // restricted residual, coarse correction
-  // Scratch of the aggregation (cell -> aggregate) and of the assembly (row I's entries).
+  // Aggregates are cells: each one's cell, and the cells' aggregates (-1: none) on a grid
+  // of nx columns.
+  std::vector<std::int32_t> cell_x, cell_y;
   std::vector<Index> cell_aggregate;
-  std::vector<std::vector<std::pair<Index, double>>> rows;
+  long nx = 0, ny = 0;
+  // The assembly's partial sums: per chunk of particles, per aggregate I, one slot per
+  // cell J within kReach cells of I's.
+  std::vector<double> partial;
 };
 
 }  // namespace sluice
