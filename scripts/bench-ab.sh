@@ -5,7 +5,7 @@
 # Prints each round's ratio and their median, with the iterations and the errors of each,
 # and writes CSV. Speed figures go in docs as such ratios, never in timed tests.
 #
-#   scripts/bench-ab.sh REV [CASE...] [--rounds N] [--threads N] [-o DIR]
+#   scripts/bench-ab.sh REV [CASE...] [--rounds N] [--threads N] [--set-a KEY=VALUE]... [-o DIR]
 #
 # Cases (default: dam20k dam130k column2m):
 #   dam20k    simulate scenes/dam_break.json, first 0.3 s (20k particles)
@@ -13,6 +13,8 @@
 #   column2m  simulate a 2 m column at rest, h = 0.01, dt = 1 ms, 0.5 s (scenes/column.json)
 #   smoke     simulate scenes/dam_break.json, first 0.02 s (a check of this script)
 # --rounds N (default 3), --threads N (default: all cores, fixed for both programs),
+# --set-a KEY=VALUE (repeatable): a scene override for this tree's program only (an option
+# that REV does not have, e.g. solver.pressure_solver=multilevel), named in the CSVs;
 # -o DIR (default out/bench-ab/REV): runs.csv (one row per run) and ratios.csv (per case:
 # the median ratio, its range, iterations, errors and mean neighbour-phase and pressure
 # milliseconds per step of each). Both programs read this
@@ -21,18 +23,21 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-rev="" rounds=3 threads=$(nproc) out="" cases=()
+rev="" rounds=3 threads=$(nproc) out="" cases=() a_sets=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --rounds) rounds="${2:?--rounds needs a number}"; shift 2 ;;
     --threads) threads="${2:?--threads needs a number}"; shift 2 ;;
     -o) out="${2:?-o needs a directory}"; shift 2 ;;
-    -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --set-a)
+      case "${2:-}" in *=*) a_sets+=(--set "$2") ;; *) echo "bench-ab: --set-a needs KEY=VALUE, got '${2:-}'" >&2; exit 2 ;; esac
+      shift 2 ;;
+    -h|--help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "bench-ab: unknown flag '$1' (see --help)" >&2; exit 2 ;;
     *) if [ -z "$rev" ]; then rev=$1; else cases+=("$1"); fi; shift ;;
   esac
 done
-[ -n "$rev" ] || { echo "bench-ab: usage: scripts/bench-ab.sh REV [CASE...] [--rounds N] [--threads N] [-o DIR]" >&2; exit 2; }
+[ -n "$rev" ] || { echo "bench-ab: usage: scripts/bench-ab.sh REV [CASE...] [--rounds N] [--threads N] [--set-a KEY=VALUE]... [-o DIR]" >&2; exit 2; }
 case "$rounds" in ''|*[!0-9]*|0) echo "bench-ab: --rounds '$rounds' must be a whole number >= 1" >&2; exit 2 ;; esac
 case "$threads" in ''|*[!0-9]*|0) echo "bench-ab: --threads '$threads' must be a whole number >= 1" >&2; exit 2 ;; esac
 [ ${#cases[@]} -gt 0 ] || cases=(dam20k dam130k column2m)
@@ -54,6 +59,8 @@ done
 sha=$(git rev-parse --verify --quiet "$rev^{commit}") || { echo "bench-ab: '$rev' is not a commit here" >&2; exit 2; }
 short=${sha:0:7}
 head=$(git rev-parse --short HEAD)$(git diff --quiet HEAD -- src CMakeLists.txt || echo "+changes")
+[ ${#a_sets[@]} -eq 0 ] || head="$head(${a_sets[*]//--set /})"  # the overrides name A in the CSV
+head=${head// /;}
 out=${out:-out/bench-ab/$short}
 mkdir -p "$out"
 
@@ -79,6 +86,7 @@ run() {
   [ "$3" = B ] && bin=$b_bin commit=$short
   local args
   read -ra args <<<"$(case_args "$2")"  # words, never globbed ([0.5,2])
+  [ "$3" = A ] && args+=("${a_sets[@]}")
   timeout 3600 "$bin" simulate "${args[@]}" --threads "$threads" -q -o "$dir" --overwrite >"$dir.log" 2>&1 ||
     { cat "$dir.log" >&2; echo "bench-ab: $3 ($commit) failed on $2 in round $1" >&2; exit 1; }
   python3 - "$dir/summary.json" "$1,$2,$3,$commit" "$dir/stats.csv" >>"$runs" <<'EOF'

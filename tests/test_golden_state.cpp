@@ -52,6 +52,7 @@ const std::vector<Config>& configs() {
   static const std::vector<Config> c = {
       {"iisph_solved", kDamBreak, {}},
       {"iisph_chebyshev", kDamBreak, {"solver.pressure_solver=chebyshev"}},
+      {"iisph_multilevel", kDamBreak, {"solver.pressure_solver=multilevel"}},
       {"iisph_extrapolation", kDamBreak, {"solver.boundary_pressure=extrapolation"}},
       {"iisph_mirroring", kDamBreak, {"solver.boundary_pressure=mirroring"}},
       {"iisph_zero", kDamBreak, {"solver.boundary_pressure=zero"}},

@@ -324,6 +324,7 @@ INSTANTIATE_TEST_SUITE_P(
     Physics, Determinism,
     ::testing::Values(
         DeterminismCase{"iisph", R"("type": "iisph")", 2e-3, 40},
+        DeterminismCase{"iisph_multilevel", R"("type": "iisph", "pressure_solver": "multilevel")", 2e-3, 40},
         DeterminismCase{"iisph_viscosity_mirroring",
                         R"("type": "iisph", "viscosity": 0.01, "boundary_pressure": "mirroring")", 2e-3, 40},
         DeterminismCase{"wcsph", R"("type": "wcsph", "stiffness": 5e5)", 1.5e-4, 60},

@@ -4,6 +4,7 @@
 
 #include "core/parallel.h"
 #include "solver/internal.h"
+#include "solver/pressure/multilevel.h"
 #include "solver/pressure_kernels.h"
 
 namespace sluice {
@@ -21,6 +22,11 @@ int SolverProbe::iterate_pressure() {
   StepStats st;
   sim_.iterate_pressure(dt_, active_samples_, st);
   return st.iterations;
+}
+
+const CoarseLevel& SolverProbe::coarse_level() {
+  sim_.multilevel_setup(sim_.pressure_terms(dt_));
+  return *sim_.scratch_->coarse;
 }
 
 const std::vector<double>& SolverProbe::source() const { return sim_.scratch_->s; }

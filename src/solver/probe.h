@@ -30,6 +30,11 @@ class SolverProbe {
   void apply(const std::vector<double>& p, const std::vector<double>& pb, std::vector<double>& ap,
              std::vector<double>& apb);
 
+  // The two-level solve's coarse level (solver/pressure/multilevel.h) at the current
+  // pressures, after prepare_pressure_system: the unknowns with p > 0 aggregated by cells,
+  // and A_c = P^T A P.
+  const CoarseLevel& coarse_level();
+
   // The walls' pressure force on the whole fluid: the sum over fluid particles of m times
   // the boundary part of Eq. 24, at the current pressures and the last step's pairs [N/m].
   // Mirroring's p_b = p_i is not applied (c gamma3 covers it). After a step: its force.

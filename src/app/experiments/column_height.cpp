@@ -9,7 +9,7 @@ namespace sluice::app::experiments {
 void column_height_experiment(Context& c) {
   const std::vector<double> heights =
       c.quick ? std::vector<double>{0.25, 0.5} : std::vector<double>{0.25, 0.5, 1, 2, 4};
-  const std::vector<std::string> solvers = {"jacobi", "chebyshev"};
+  const std::vector<std::string> solvers = {"jacobi", "chebyshev", "multilevel"};
   const double duration = c.quick ? 0.1 : 0.5;
   io::CsvWriter csv(
       "pressure_solver,height,particles,stable,steps,avg_iterations,avg_density_error_percent,s_per_simulated_s");
