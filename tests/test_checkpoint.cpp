@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/checkpoint.h"
@@ -135,6 +136,33 @@ TEST(Checkpoint, StateRoundTripIsBitIdentical) {
   expect_same_state(c.state, other.state());
   EXPECT_EQ(other.time(), sim.time());
   EXPECT_EQ(other.steps(), 37);
+}
+
+// Simulation::solver_settings() may switch the pressure solver between steps: the steps
+// after it solve with the new one (its loop and its warm start), as a simulation built
+// with that solver does from the same state. Both ways, Jacobi to Chebyshev and back.
+TEST(Checkpoint, PressureSolverSwitchedBetweenStepsTakesEffect) {
+  for (const auto& [from, to] : {std::pair{"jacobi", "chebyshev"}, std::pair{"chebyshev", "jacobi"}}) {
+    const Scene before = dam_break({std::string("solver.pressure_solver=") + from});
+    const Scene after = dam_break({std::string("solver.pressure_solver=") + to});
+    Simulation a(before);
+    for (int k = 0; k < 20; ++k) a.step();
+    const SimulationState at_switch = a.state();
+    a.solver_settings().pressure_solver = after.solver.pressure_solver;
+    Simulation b(after), stayed(before);
+    b.restore(at_switch);
+    stayed.restore(at_switch);
+    int extrapolated = 0;  // steps past Chebyshev's 3 plain iterations
+    for (int k = 0; k < 20; ++k) {
+      const StepStats sa = a.step(), sb = b.step();
+      stayed.step();
+      EXPECT_EQ(sa.iterations, sb.iterations) << from << " to " << to << ", step " << sa.step;
+      extrapolated += sa.iterations > 3;
+    }
+    EXPECT_EQ(test::state_hash(a), test::state_hash(b)) << from << " to " << to;
+    EXPECT_NE(test::state_hash(a), test::state_hash(stayed)) << from << " to " << to << ": the switch changed nothing";
+    EXPECT_GT(extrapolated, 0);
+  }
 }
 
 // --- resuming after frame k ends where the uninterrupted run ends -----------------------

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/pressure/multilevel.h"
+#include "solver/pressure/coarse_level.h"
 #include "solver/probe.h"
 #include "solver/simulation.h"
 #include "test_util.h"
@@ -22,46 +22,50 @@ using test::scene_from_json;
 class CoarseOperator : public ::testing::TestWithParam<const char*> {};
 
 // A 0.4 x 0.3 m block in a box (h = 0.02: 300 particles), after 0.05 s of a dam-break-like
-// start so that the pressures are a real field, some clamped at the free surface.
+// start so that the pressures are a real field, some clamped at the free surface; cells
+// of 2 spacings (the smallest allowed: coupled aggregates two cells apart) and of 5.
 TEST_P(CoarseOperator, IsTheGalerkinProductOfTheOperator) {
-  Simulation sim(scene_from_json(R"({"spacing": 0.02,
-    "solver": {"pressure_solver": "multilevel", "boundary_pressure": ")" +
-                                 std::string(GetParam()) + R"("},
-    "time": {"duration": 1, "fps": 10, "dt": 1e-3},
-    "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.4, 0.3]}],
-    "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.8, 0.5], "lid": false}]})"));
-  for (int s = 0; s < 50; ++s) sim.step();
-  SolverProbe probe(sim);
-  probe.prepare_pressure_system(1e-3);
-  probe.iterate_pressure();
-  const CoarseLevel& cl = probe.coarse_level();
-  const Index n = sim.fluid().size(), nb = sim.boundary().size();
-  const bool samples = std::string(GetParam()) == "solved";
-  Index fluid_in = 0, samples_in = 0;
-  for (Index u = 0; u < n + nb; ++u) (u < n ? fluid_in : samples_in) += cl.aggregate[u] >= 0;
-  ASSERT_GT(cl.aggregates, 10);
-  ASSERT_GT(fluid_in, n / 2) << "most of the fluid is aggregated";
-  ASSERT_LT(fluid_in, n) << "the free surface's clamped particles stay out";
-  if (samples) ASSERT_GT(samples_in, 0) << "pressure boundaries: the samples are unknowns too";
-  const Eigen::MatrixXd a_c(cl.a_c);
-  const double scale = a_c.cwiseAbs().maxCoeff();
-  double worst = 0;
-  std::vector<double> ap, apb;
-  for (Index j = 0; j < cl.aggregates; ++j) {
-    std::vector<double> p(static_cast<size_t>(n), 0.0), pb(static_cast<size_t>(nb), 0.0);
-    for (Index u = 0; u < n + nb; ++u)
-      if (cl.aggregate[u] == j) (u < n ? p[u] : pb[u - n]) = 1.0;
-    probe.apply(p, pb, ap, apb);
-    std::vector<double> column(static_cast<size_t>(cl.aggregates), 0.0);
-    for (Index u = 0; u < n + nb; ++u)
-      if (cl.aggregate[u] >= 0) column[cl.aggregate[u]] += u < n ? ap[u] : apb[u - n];
-    for (Index i = 0; i < cl.aggregates; ++i) worst = std::max(worst, std::abs(column[i] - a_c(i, j)));
+  for (const char* cell : {"2", "5"}) {
+    Simulation sim(scene_from_json(R"({"spacing": 0.02,
+      "solver": {"pressure_solver": "multilevel", "multilevel_cell": )" +
+                                   std::string(cell) + R"(, "boundary_pressure": ")" + GetParam() + R"("},
+      "time": {"duration": 1, "fps": 10, "dt": 1e-3},
+      "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.4, 0.3]}],
+      "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.8, 0.5], "lid": false}]})"));
+    for (int s = 0; s < 50; ++s) sim.step();
+    SolverProbe probe(sim);
+    probe.prepare_pressure_system(1e-3);
+    probe.iterate_pressure();
+    const CoarseLevel& cl = probe.coarse_level();
+    const Index n = sim.fluid().size(), nb = sim.boundary().size();
+    const bool samples = std::string(GetParam()) == "solved";
+    Index fluid_in = 0, samples_in = 0;
+    for (Index u = 0; u < n + nb; ++u) (u < n ? fluid_in : samples_in) += cl.aggregate[u] >= 0;
+    ASSERT_GT(cl.aggregates, 10);
+    ASSERT_GT(fluid_in, n / 2) << "most of the fluid is aggregated";
+    ASSERT_LT(fluid_in, n) << "the free surface's clamped particles stay out";
+    if (samples) ASSERT_GT(samples_in, 0) << "pressure boundaries: the samples are unknowns too";
+    const Eigen::MatrixXd a_c(cl.a_c);
+    const double scale = a_c.cwiseAbs().maxCoeff();
+    double worst = 0;
+    std::vector<double> ap, apb;
+    for (Index j = 0; j < cl.aggregates; ++j) {
+      std::vector<double> p(static_cast<size_t>(n), 0.0), pb(static_cast<size_t>(nb), 0.0);
+      for (Index u = 0; u < n + nb; ++u)
+        if (cl.aggregate[u] == j) (u < n ? p[u] : pb[u - n]) = 1.0;
+      probe.apply(p, pb, ap, apb);
+      std::vector<double> column(static_cast<size_t>(cl.aggregates), 0.0);
+      for (Index u = 0; u < n + nb; ++u)
+        if (cl.aggregate[u] >= 0) column[cl.aggregate[u]] += u < n ? ap[u] : apb[u - n];
+      for (Index i = 0; i < cl.aggregates; ++i) worst = std::max(worst, std::abs(column[i] - a_c(i, j)));
+    }
+    std::printf(
+        "[ measured ] %s, cells of %s h: %d aggregates (%d fluid particles of %d, %d samples); largest "
+        "|A_c - P^T A P| / max |A_c| = %.2e\n",
+        GetParam(), cell, static_cast<int>(cl.aggregates), static_cast<int>(fluid_in), static_cast<int>(n),
+        static_cast<int>(samples_in), worst / scale);
+    EXPECT_LT(worst, 1e-9 * scale);
   }
-  std::printf("[ measured ] %s: %d aggregates (%d fluid particles of %d, %d samples); largest |A_c - P^T A P| / "
-              "max |A_c| = %.2e\n",
-              GetParam(), static_cast<int>(cl.aggregates), static_cast<int>(fluid_in), static_cast<int>(n),
-              static_cast<int>(samples_in), worst / scale);
-  EXPECT_LT(worst, 1e-9 * scale);
 }
 
 INSTANTIATE_TEST_SUITE_P(EachBoundaryMethod, CoarseOperator, ::testing::Values("solved", "mirroring", "zero"));
@@ -75,7 +79,7 @@ TEST(Multilevel, IterationsDoNotGrowWithTheDepth) {
     Simulation sim(scene_from_json(R"({"spacing": 0.02,
       "time": {"duration": 0.3, "fps": 10, "dt": 1e-3},
       "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.4, )" +
-                                   std::to_string(height) + R"(]}],
+                                       std::to_string(height) + R"(]}],
       "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.4, 4.2], "lid": false}]})",
                                    {"solver.pressure_solver=" + solver}));
     double iterations = 0;
@@ -92,9 +96,10 @@ TEST(Multilevel, IterationsDoNotGrowWithTheDepth) {
   double e_shallow = 0, e_deep = 0, e_jacobi = 0;
   const double shallow = run("multilevel", 0.5, e_shallow), deep = run("multilevel", 4, e_deep);
   const double jacobi = run("jacobi", 4, e_jacobi);
-  std::printf("[ measured ] multilevel iterations 0.5 m %.2f, 4 m %.2f (Jacobi 4 m %.2f); largest compression "
-              "%.4f%%, %.4f%% (Jacobi %.4f%%)\n",
-              shallow, deep, jacobi, e_shallow, e_deep, e_jacobi);
+  std::printf(
+      "[ measured ] multilevel iterations 0.5 m %.2f, 4 m %.2f (Jacobi 4 m %.2f); largest compression "
+      "%.4f%%, %.4f%% (Jacobi %.4f%%)\n",
+      shallow, deep, jacobi, e_shallow, e_deep, e_jacobi);
   EXPECT_LT(deep, 1.5 * shallow);
   EXPECT_LT(deep, 0.25 * jacobi);
   EXPECT_LE(e_deep, e_jacobi);

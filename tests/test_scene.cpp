@@ -453,6 +453,21 @@ TEST(SceneSettings, PressureSolverChoices) {
   EXPECT_NE(bad.find("chebyshev"), std::string::npos) << bad;
   const std::string rho = error_of(text, {"solver.chebyshev_rho=1"});
   EXPECT_NE(rho.find("/solver/chebyshev_rho: value 1 is out of range; must be in [0, 1)"), std::string::npos) << rho;
+  // multilevel: its cell size, and the boundary methods its coarse operator covers.
+  const Scene m = parse_scene(text, kFile, {"solver.pressure_solver=multilevel", "solver.multilevel_cell=4"});
+  EXPECT_EQ(m.solver.pressure_solver, PressureSolver::Multilevel);
+  EXPECT_EQ(m.solver.multilevel_cell, 4.0);
+  EXPECT_EQ(m.resolved["solver"]["pressure_solver"], "multilevel");
+  EXPECT_EQ(parse_scene(text, kFile).solver.multilevel_cell, 8.0);
+  const std::string cell = error_of(text, {"solver.multilevel_cell=1.5"});
+  EXPECT_NE(cell.find("/solver/multilevel_cell: value 1.5 is out of range; must be in [2, 64]"), std::string::npos)
+      << cell;
+  const std::string ext =
+      error_of(text, {"solver.pressure_solver=multilevel", "solver.boundary_pressure=extrapolation"});
+  EXPECT_NE(ext.find("/solver/pressure_solver"), std::string::npos) << ext;
+  EXPECT_NE(ext.find("not \"extrapolation\""), std::string::npos) << ext;
+  EXPECT_NO_THROW(
+      parse_scene(text, kFile, {"solver.pressure_solver=multilevel", "solver.boundary_pressure=mirroring"}));
 }
 
 // A fixed WCSPH step above 0.4 h / c is refused, naming the limit and the stiffness.

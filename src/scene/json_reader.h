@@ -35,6 +35,7 @@ struct Range {
   static Range open_closed(double lo, double hi, std::string unit = "") {
     return {lo, hi, true, false, std::move(unit)};
   }
+  static Range closed(double lo, double hi, std::string unit = "") { return {lo, hi, false, false, std::move(unit)}; }
   static Range closed_open(double lo, double hi, std::string unit = "") {
     return {lo, hi, false, true, std::move(unit)};
   }

@@ -58,6 +58,7 @@ SolverSettings read_solver(Reader& r, const Context& ctx) {
                                      {"chebyshev", PressureSolver::Chebyshev},
                                      {"multilevel", PressureSolver::Multilevel}});
   s.chebyshev_rho = r.number("chebyshev_rho", s.chebyshev_rho, Range::closed_open(0, 1));
+  s.multilevel_cell = r.number("multilevel_cell", s.multilevel_cell, Range::closed(2, 64, "[particle spacings]"));
   // Absent or null: the scene's default (wcsph_default_stiffness), set in parse_scene once
   // the fluid exists.
   if (const json* k = r.find("stiffness"); k && !k->is_null())
@@ -72,6 +73,11 @@ SolverSettings read_solver(Reader& r, const Context& ctx) {
   s.gamma2 = r.number("gamma2", s.gamma2, Range::at_least(0));
   s.gamma3 = r.number("gamma3", s.gamma3, Range::at_least(0));
   s.boundary_diagonal = r.boolean("boundary_diagonal", s.boundary_diagonal);
+  if (s.type == SolverType::IISPH && s.pressure_solver == PressureSolver::Multilevel &&
+      s.boundary_pressure == BoundaryPressure::Extrapolation)
+    ctx.fail(r.at("pressure_solver"),
+             "\"multilevel\" needs boundary_pressure \"solved\", \"mirroring\" or \"zero\", not \"extrapolation\": "
+             "its coarse operator has no term for Eq. 25's extrapolated wall pressure");
   r.finish();
   return s;
 }

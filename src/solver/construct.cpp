@@ -6,6 +6,7 @@
 
 #include "core/check.h"
 #include "solver/internal.h"
+#include "solver/pressure/pressure_solver.h"  // ~Simulation deletes pressure_method_
 
 // Construction: the fluid and boundary arrays from a SimulationSetup, the boundary
 // volumes of 4.1, the particle mass and the sound speed; then the optional settling.

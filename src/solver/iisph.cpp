@@ -1,11 +1,11 @@
 #include "solver/simulation.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 
 #include "core/parallel.h"
 #include "solver/internal.h"
+#include "solver/pressure/pressure_solver.h"
+#include "solver/pressure/system.h"
 #include "solver/pressure_kernels.h"
 
 namespace sluice {
@@ -13,7 +13,8 @@ namespace sluice {
 using namespace solver_detail;
 
 // ---------------------------------------------------------------------------------
-// IISPH pressure solver (chapter 3, Algorithm 2, relaxed Jacobi).
+// IISPH pressure solver (chapter 3, Algorithm 2): the PPE's set-up and the step's solve;
+// the iteration schemes (relaxed Jacobi, Chebyshev) are in solver/pressure/.
 //
 // With the pressure accelerations of Eq. 24, the PPE of Eq. 17 for fluid particle i is
 //   (Ap)_i = dt [ sum_f m_f (a_i - a_f) . grad W_if + gamma2 sum_b m_b (a_i - a_b) . grad W_ib ]
@@ -88,7 +89,7 @@ Index Simulation::prepare_pressure_system(double dt) {
   const double c = (mirror && s.boundary_diagonal) ? 2.0 : 1.0;
   const bool coupling = extrapolate && s.boundary_diagonal;
   const bool thesis_init = s.pressure_init == PressureInit::Thesis;
-  const double warm = warm_start_factor(s.pressure_solver);
+  const double warm = pressure_method().warm_start_factor();  // p^(0) = warm p(t - dt)
   const double vb_scale = boundary_velocity_in_source_ ? 1.0 : 0.0;
 
   // Source term s_i (Eq. 19), diagonal a_ii (Eq. 26), initial pressure p^(0) (Eq. 21).
@@ -130,85 +131,35 @@ Index Simulation::prepare_pressure_system(double dt) {
   return active_samples;
 }
 
-namespace {
-// Chebyshev's extrapolation starts after this many plain Jacobi iterations (the delay of
-// Wang 2015): a step that converges within them, a fluid at rest, is Jacobi's bit for bit.
-constexpr int kChebyshevDelay = 3;
-
-// The weight w_{l+1} of Chebyshev's semi-iteration in iteration l (0-based) for a Jacobi
-// iteration of spectral radius rho: 1, 2 / (2 - rho^2), then 4 / (4 - rho^2 w_l). Its
-// residual polynomial is T_l(mu / rho) / T_l(1 / rho) on each eigenvalue mu of the
-// Jacobi iteration, below 1 for every |mu| < 1: any rho converges where Jacobi does, the
-// modes with |mu| <= rho fastest. Modes at mu near 1 (the lattice-scale near-null modes of
-// Eq. 24's sum form) it leaves alone, as Jacobi does.
-double chebyshev_weight(int l, double previous, double rho) {
-  if (l == 0) return 1.0;
-  if (l == 1) return 2.0 / (2.0 - rho * rho);
-  return 4.0 / (4.0 - rho * rho * previous);
+// The scheme that solves this step's PPE (solver/pressure/): made again when
+// settings_.pressure_solver has changed since the last step.
+PressureSolverMethod& Simulation::pressure_method() {
+  if (!pressure_method_ || pressure_method_kind_ != settings_.pressure_solver) {
+    pressure_method_ = make_pressure_solver(settings_.pressure_solver);
+    pressure_method_kind_ = settings_.pressure_solver;
+  }
+  return *pressure_method_;
 }
-}  // namespace
 
-// Algorithm 2's solver loop: relaxed Jacobi sweeps (Eq. 24, then 20, 21, 23) until the
-// average predicted compression is within the tolerance, then the accelerations of the
-// final pressures.
+// Algorithm 2's solver loop, run by the chosen scheme (solver/pressure/jacobi.cpp,
+// chebyshev.cpp) through the step's PressureSystem, then the accelerations of the final
+// pressures.
 void Simulation::iterate_pressure(double dt, Index active_samples, StepStats& st) {
   const Index n = fluid_.size();
   const SolverSettings& s = settings_;
-  const bool solved_boundary = s.boundary_pressure == BoundaryPressure::Solved;
   const Index block = plan_jacobi_sweep();  // how the sweeps are scheduled (jacobi_sweep.cpp)
   scratch_->err.resize(n);
   scratch_->a_p.resize(n);
-  int l = 0;
-  double avg = 0.0;
-  PressureTerms terms = pressure_terms(dt);
-  const bool chebyshev = s.pressure_solver == PressureSolver::Chebyshev;
-  const bool multilevel = s.pressure_solver == PressureSolver::Multilevel;
-  static const int ml_first = getenv("ML_FIRST") ? atoi(getenv("ML_FIRST")) : 1;
-  static const int ml_every = getenv("ML_EVERY") ? atoi(getenv("ML_EVERY")) : 2;
-  int extra = 0;
-  bool coarse_ready = false, corrected = false;
-  if (chebyshev) {
-    scratch_->p_prev = fluid_.p;
-    scratch_->pb_prev = boundary_.p;
-  }
-  do {
-    if (chebyshev && l >= kChebyshevDelay)
-      terms.chebyshev = chebyshev_weight(l - kChebyshevDelay, terms.chebyshev, s.chebyshev_rho);
-    update_boundary_pressure();
-    const double sum = jacobi_sweep(block, terms);
-    avg = n ? sum / n : 0.0;
-    // Pressure boundaries: the samples' constraints converge too (their own average), or
-    // their pressures lag the fluid's and stop being constraint forces.
-    if (solved_boundary && active_samples > 0) avg = std::max(avg, jacobi_update_boundary(terms) / active_samples);
-    ++l;
-    if (multilevel && getenv("ML_DEBUG")) fprintf(stderr, "sweep %d avg %.4f\n", l, avg);
-    static const bool ml_always = getenv("ML_ALWAYS") != nullptr;
-    corrected = false;
-    if (multilevel && (avg > s.tolerance_percent || (ml_always && !coarse_ready)) && l >= ml_first &&
-        (l - ml_first) % ml_every == 0) {
-      corrected = true;
-      if (!coarse_ready) multilevel_setup(terms);
-      coarse_ready = true;
-      multilevel_correction(terms);
-      ++extra;
-    }
-  } while ((avg > s.tolerance_percent || l < s.min_iterations || corrected) && l < s.max_iterations);
-  // Chebyshev: the last extrapolation is unchecked (Eq. 23 was measured at p_k, before
-  // it) and can overshoot where the clamp is active; keep the iterate that was measured.
-  if (terms.chebyshev > 0.0) {
-    fluid_.p = scratch_->p_prev;
-    boundary_.p = scratch_->pb_prev;
-    const double inv_rho0_2 = 1.0 / (s.rest_density * s.rest_density);
-    parallel_for(n, [&](Index i) { scratch_->p_over_rho2[i] = fluid_.p[i] / (fluid_.rho[i] * fluid_.rho[i]); });
-    parallel_for(boundary_.size(), [&](Index b) { scratch_->pb_over_rho2[b] = boundary_.p[b] * inv_rho0_2; });
-  }
+  PressureSystem system(*this, pressure_terms(dt), block, active_samples);
+  const PressureSolveResult r =
+      pressure_method().iterate(system, {s.tolerance_percent, s.min_iterations, s.max_iterations});
   // Integrate the accelerations of the final pressures ([Ihm+14a], Algorithm 1); the
   // loop's a_p belong to the iterate before the last update.
   update_boundary_pressure();
   compute_pressure_acceleration();
   if (has_moving_boundaries()) add_boundary_pressure_work(dt);
-  st.iterations = l + extra;  // a coarse correction counts its applications of A
-  st.avg_error_percent = avg;
+  st.iterations = r.iterations;
+  st.avg_error_percent = r.avg_error_percent;
   st.max_error_percent = parallel_max(n, 0.0, [&](Index i) { return scratch_->err[i]; });
 }
 
@@ -224,7 +175,7 @@ Index Simulation::prepare_solved_boundary(double dt) {
   const SolverSettings& s = settings_;
   const double rho0 = s.rest_density, g1r = s.gamma1 * rho0, inv_rho0_2 = 1.0 / (rho0 * rho0);
   const bool thesis_init = s.pressure_init == PressureInit::Thesis;
-  const double warm = warm_start_factor(s.pressure_solver);
+  const double warm = pressure_method().warm_start_factor();
   const Index nb = boundary_.size();
   const double vb_scale = boundary_velocity_in_source_ ? 1.0 : 0.0;
   scratch_->bnd_s.resize(nb);

@@ -38,28 +38,14 @@ struct SolverScratch {
   std::vector<double> bnd_s, bnd_aii;
   // Chebyshev's semi-iteration: the fluid's and the samples' pressures one iteration back.
   std::vector<double> p_prev, pb_prev;
-  std::vector<double> volume;  // m / rho_i of fluid particles (apply_nonpressure)
-  std::vector<double> work;    // boundary work on each fluid particle in this step [J/m]
+  std::vector<double> volume;                  // m / rho_i of fluid particles (apply_nonpressure)
+  std::vector<double> work;                    // boundary work on each fluid particle in this step [J/m]
   std::shared_ptr<struct CoarseLevel> coarse;  // the two-level solve's coarse level (multilevel.h)
 };
 
 }  // namespace sluice
 
 namespace sluice::solver_detail {
-
-// Warm start p^(0) = 0.5 p(t - dt), the choice of [Ihm+14a]. A factor of 1 keeps the
-// part of the previous pressure that the operator A barely sees (lattice-scale,
-// checkerboard-like noise) forever; it then drives particles apart and a column at
-// rest never settles (kinetic energy grows). Halving it every step lets it decay.
-constexpr double kWarmStartFactor = 0.5;
-// Chebyshev's residual polynomial is steep at the Jacobi eigenvalue 1, so the modes the
-// operator barely sees grow faster within a solve and the old pressure must be forgotten
-// faster: at 0.5 a closed tank at rest gained 0.99 J/m in 10 s, at 0.1 0.025 J/m
-// (docs/performance.md, "Pressure solvers").
-constexpr double kChebyshevWarmStartFactor = 0.1;
-inline double warm_start_factor(PressureSolver solver) {
-  return solver == PressureSolver::Chebyshev ? kChebyshevWarmStartFactor : kWarmStartFactor;
-}
 
 class Stopwatch {
  public:

@@ -4,7 +4,7 @@
 
 #include "core/parallel.h"
 #include "solver/internal.h"
-#include "solver/pressure/multilevel.h"
+#include "solver/pressure/coarse_level.h"
 #include "solver/pressure_kernels.h"
 
 namespace sluice {
@@ -25,7 +25,7 @@ int SolverProbe::iterate_pressure() {
 }
 
 const CoarseLevel& SolverProbe::coarse_level() {
-  sim_.multilevel_setup(sim_.pressure_terms(dt_));
+  sim_.build_coarse_level(sim_.pressure_terms(dt_));
   return *sim_.scratch_->coarse;
 }
 

@@ -30,7 +30,7 @@ class SolverProbe {
   void apply(const std::vector<double>& p, const std::vector<double>& pb, std::vector<double>& ap,
              std::vector<double>& apb);
 
-  // The two-level solve's coarse level (solver/pressure/multilevel.h) at the current
+  // The multilevel scheme's coarse level (solver/pressure/coarse_level.h) at the current
   // pressures, after prepare_pressure_system: the unknowns with p > 0 aggregated by cells,
   // and A_c = P^T A P.
   const CoarseLevel& coarse_level();

@@ -29,9 +29,9 @@ enum class PressureInit {
 
 // How IISPH solves its PPE (chapter 3).
 enum class PressureSolver {
-  Jacobi,     // Algorithm 2: relaxed Jacobi (Eq. 21)
-  Chebyshev,  // the same sweeps, each extrapolated by Chebyshev's semi-iteration (chebyshev_rho)
-  Multilevel,  // Jacobi sweeps with a Galerkin coarse correction (solver/pressure/multilevel.cpp)
+  Jacobi,      // Algorithm 2: relaxed Jacobi (Eq. 21)
+  Chebyshev,   // the same sweeps, each extrapolated by Chebyshev's semi-iteration (chebyshev_rho)
+  Multilevel,  // the same sweeps and, each solve, a Galerkin coarse correction (multilevel_cell)
 };
 
 const char* to_string(SolverType t);
@@ -64,6 +64,9 @@ struct SolverSettings {
   // Chebyshev: the spectral radius assumed for the relaxed Jacobi iteration, in [0, 1).
   // Any value converges where Jacobi does; near the true radius is fastest.
   double chebyshev_rho = 0.98;
+  // Multilevel: the side of the cells that aggregate the pressures, in particle spacings,
+  // in [2, 64] (coupled aggregates then lie within two cells of each other).
+  double multilevel_cell = 8.0;
   // Include in a_ii the dependence of the boundary pressure on p_i (mirroring: p_b = p_i
   // doubles the boundary part; extrapolation: p_b carries p_i with weight W_bi / sum W).
   // Off: Eq. 26 as printed, where the boundary enters d_ii once. See solve_pressure_iisph.

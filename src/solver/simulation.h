@@ -1,7 +1,9 @@
 #pragma once
 // One 2D SPH simulation: fluid and boundary particles, neighbour search, the IISPH
 // (chapter 3, Algorithm 2) or WCSPH (section 2.3.1) pressure solver, boundary
-// handling of chapter 4, and time control landing exactly on frame times.
+// handling of chapter 4, and time control landing exactly on frame times. IISPH's PPE
+// is set up here (iisph.cpp) and iterated by one of the schemes in solver/pressure/
+// (pressure_solver.h), through a PressureSystem (solver/pressure/system.h).
 // No globals: several simulations can coexist in one process.
 #include <memory>
 #include <stdexcept>
@@ -23,8 +25,9 @@ class SimulationUnstable : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-struct SolverScratch;  // per-step arrays of the pressure solvers (solver/internal.h)
-struct CoarseLevel;  // the two-level solve's coarse level (solver/pressure/multilevel.h)
+struct SolverScratch;        // per-step arrays of the pressure solvers (solver/internal.h)
+class PressureSolverMethod;  // an iteration scheme of the PPE (solver/pressure/pressure_solver.h)
+struct CoarseLevel;          // the multilevel scheme's coarse level (solver/pressure/multilevel.h)
 
 double lattice_kernel_sum(const CubicSpline2D& kernel);
 
@@ -96,7 +99,8 @@ class Simulation {
   void recompute_density();
 
  private:
-  friend class SolverProbe;  // tests' window into the pressure system (solver/probe.h)
+  friend class SolverProbe;     // tests' window into the pressure system (solver/probe.h)
+  friend class PressureSystem;  // a pressure solver's handle on one step's PPE (solver/pressure/system.h)
 
   // Phases of a step, in the order of Algorithm 2.
   double choose_time_step() const;
@@ -108,10 +112,12 @@ class Simulation {
   void compute_density();                               // grad W per pair, then Eq. 13 + section 4.1
   void apply_nonpressure(double dt);                    // Eq. 12 + gravity: v* = v + dt (a_v + g)
   void solve_pressure_iisph(double dt, StepStats& st);  // prepare_pressure_system, then iterate_pressure
-  Index prepare_pressure_system(double dt);
-  double extrapolation_coupling(Index i) const;  // a_ii's share of p_i through the neighbours' p_b (Eq. 25) // Eq. 19,
-                                                 // 22/26, p^(0); returns the samples with a row
-  void iterate_pressure(double dt, Index active_samples, StepStats& st);  // Algorithm 2's solver loop
+  Index prepare_pressure_system(double dt);             // Eq. 19, 22/26, p^(0); returns the samples with a row
+  double extrapolation_coupling(Index i) const;         // a_ii's share of p_i through the neighbours' p_b (Eq. 25)
+  // Algorithm 2's solver loop: the chosen scheme's iterate (solver/pressure/), then a_p of the
+  // final pressures.
+  void iterate_pressure(double dt, Index active_samples, StepStats& st);
+  PressureSolverMethod& pressure_method();  // settings_.pressure_solver's scheme (iterate, warm start)
   void solve_pressure_wcsph(double dt, StepStats& st);
   void integrate(double dt);  // semi-implicit Euler (Algorithm 1, last loop)
   void check_stability(const StepStats& st) const;
@@ -147,11 +153,11 @@ class Simulation {
   double jacobi_sweep(Index block,
                       const PressureTerms& t);  // Eq. 24, then 20, 21, 23 for all; returns the sum of Eq. 23
   void sweep_range(Index begin, Index end, Index block, const PressureTerms& t);
-  // The two-level solve (solver/pressure/multilevel.cpp).
-  void aggregate_unknowns(CoarseLevel& cl) const;                              // the unknowns by cells
-  void assemble_coarse_operator(const PressureTerms& t, CoarseLevel& cl) const;  // P^T A P
-  void multilevel_setup(const PressureTerms& t);                                 // aggregates, P^T A P, its LU
-  void multilevel_correction(const PressureTerms& t);                            // x += P A_c^-1 P^T (s - A x)
+  // The multilevel scheme's coarse level (solver/pressure/coarse_level.cpp).
+  void aggregate_unknowns(CoarseLevel& cl) const;                                // the unknowns with p > 0 by cells
+  void assemble_coarse_operator(const PressureTerms& t, CoarseLevel& cl) const;  // A_c = P^T A P
+  void build_coarse_level(const PressureTerms& t);                               // aggregates, A_c, its factors
+  bool coarse_correction(const PressureTerms& t);                                // x += P A_c^-1 P^T (s - A x)
 
   // Boundaries (chapter 4).
   void move_boundaries(double dt);  // scripted poses at time_ -> x, v, a of moving samples
@@ -175,6 +181,10 @@ class Simulation {
   SpatialHashGrid fluid_grid_, boundary_grid_;
   NeighborLists ff_, fb_, bf_;              // fluid-fluid, fluid-boundary, boundary-fluid (transpose of fb)
   std::unique_ptr<SolverScratch> scratch_;  // never null
+  // The IISPH scheme of pressure_method_kind_, made by pressure_method() when first needed
+  // or when settings_.pressure_solver has changed.
+  std::unique_ptr<PressureSolverMethod> pressure_method_;
+  PressureSolver pressure_method_kind_ = PressureSolver::Jacobi;
   bool brute_force_ = false;
   bool boundary_velocity_in_source_ = true;
   Index jacobi_block_ = 0;   // 0: jacobi_block_size() chooses

@@ -1,238 +1,54 @@
-// The two-level pressure solve (solver.pressure_solver = "multilevel"): relaxed Jacobi
-// sweeps (Algorithm 2) and, once per solve after the first sweep, a Galerkin coarse
-// correction of the smooth, column-long modes that the sweeps damp slowly (issue 37;
-// aggregation by cells after Osaki et al. 2023, Galerkin operator as in algebraic
-// multigrid for SPH, Trask et al. 2015).
-#include "solver/pressure/multilevel.h"
+// A two-level solve of the PPE (issue 37): Algorithm 2's relaxed Jacobi sweeps smooth the
+// lattice-scale error, and a Galerkin coarse correction on cells of particles
+// (coarse_level.cpp) removes the smooth, column-long error that the sweeps damp in a
+// number of iterations growing with the depth. Aggregation by cells after Osaki et al.
+// 2023; the Galerkin operator P^T A P as in algebraic multigrid for SPH (Trask et al. 2015).
+#include <memory>
 
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <stdexcept>
-
-#include "core/parallel.h"
-#include "solver/internal.h"
-#include "solver/pressure_kernels.h"
-#include "solver/simulation.h"
+#include "solver/pressure/pressure_solver.h"
+#include "solver/pressure/system.h"
 
 namespace sluice {
 
 namespace {
-double env_number(const char* name, double fallback) {
-  const char* v = std::getenv(name);
-  return v ? std::atof(v) : fallback;
-}
 
-// A particle's acceleration (Eq. 24) and its (Ap) contributions as functions of the
-// aggregates' pressures: at most this many distinct aggregates each.
-struct AggregateTerms {
-  static constexpr int kMax = 24;
-  Index id[kMax];
-  Vec2 c[kMax];
-  int size = 0;
-  void add(Index a, const Vec2& v) {
-    if (a < 0) return;
-    for (int k = 0; k < size; ++k)
-      if (id[k] == a) {
-        c[k] += v;
-        return;
+// The warm start of Jacobi ([Ihm+14a], jacobi.cpp).
+constexpr double kWarmStartFactor = 0.5;
+// A further correction every this many sweeps while the error is above the tolerance.
+constexpr int kCorrectionEvery = 2;
+
+class MultilevelSolver final : public PressureSolverMethod {
+ public:
+  const char* name() const override { return "multilevel"; }
+  double warm_start_factor() const override { return kWarmStartFactor; }
+
+  // The first sweep fixes the clamp (who is at p = 0 stays out of the coarse level for this
+  // solve), then one coarse correction in every solve, even one already within the
+  // tolerance: a smooth compression that stays under the tolerance step after step would
+  // otherwise build up until a solve removes it at once and throws the fluid up (a 2 m
+  // column went from 15 to 470 J/m in one step). Each correction counts as one iteration
+  // (it applies A once), and a sweep always follows it, so the error returned is measured.
+  PressureSolveResult iterate(PressureSystem& system, const PressureSolveLimits& limits) override {
+    int l = 0, corrections = 0;
+    double avg = 0.0;
+    bool corrected = false;
+    do {
+      avg = system.sweep();
+      ++l;
+      corrected = false;
+      if (l == 1 || (avg > limits.tolerance_percent && (l - 1) % kCorrectionEvery == 0)) {
+        if (l == 1) system.build_coarse_level();
+        corrected = system.coarse_correction();
+        corrections += corrected;
       }
-    if (size == kMax) throw std::runtime_error("multilevel: a particle touches more than 24 aggregates");
-    id[size] = a;
-    c[size] = v;
-    ++size;
+    } while ((avg > limits.tolerance_percent || l < limits.min_iterations || corrected) &&
+             l + corrections < limits.max_iterations);
+    return {l + corrections, avg};
   }
 };
 
 }  // namespace
 
-// Aggregates: the unknowns with p > 0 after the first sweep (fluid) or a row of their own
-// with p > 0 (samples of pressure boundaries), grouped by square cells of kCell spacings,
-// numbered in order of first appearance.
-void Simulation::aggregate_unknowns(CoarseLevel& cl) const {
-  const Index n = fluid_.size(), nb = boundary_.size();
-  const bool samples = settings_.boundary_pressure == BoundaryPressure::Solved;
-  static const double cell_factor = env_number("ML_CELL", 4.0);
-  const double inv_cell = 1.0 / (cell_factor * setup_.spacing);
-  cl.aggregate.assign(static_cast<size_t>(n + nb), -1);
-  auto position = [&](Index u) { return u < n ? fluid_.x[u] : boundary_.x[u - n]; };
-  auto active = [&](Index u) {
-    return u < n ? fluid_.p[u] > 0.0 : samples && scratch_->bnd_aii[u - n] != 0.0 && boundary_.p[u - n] > 0.0;
-  };
-  long x0 = 0, y0 = 0, x1 = -1, y1 = -1;
-  bool any = false;
-  for (Index u = 0; u < n + nb; ++u) {
-    if (!active(u)) continue;
-    const Vec2 x = position(u);
-    const long cx = static_cast<long>(std::floor(x.x() * inv_cell)), cy = static_cast<long>(std::floor(x.y() * inv_cell));
-    if (!any) {
-      x0 = x1 = cx;
-      y0 = y1 = cy;
-      any = true;
-    }
-    x0 = std::min(x0, cx), x1 = std::max(x1, cx), y0 = std::min(y0, cy), y1 = std::max(y1, cy);
-  }
-  const long nx = x1 - x0 + 1, ny = y1 - y0 + 1;
-  cl.nx = nx;
-  cl.ny = ny;
-  cl.cell_aggregate.assign(static_cast<size_t>(std::max(0L, nx * ny)), -1);
-  cl.cell_x.clear();
-  cl.cell_y.clear();
-  Index count = 0;
-  for (Index u = 0; u < n + nb; ++u) {
-    if (!active(u)) continue;
-    const Vec2 x = position(u);
-    const long cx = static_cast<long>(std::floor(x.x() * inv_cell)) - x0,
-               cy = static_cast<long>(std::floor(x.y() * inv_cell)) - y0;
-    Index& a = cl.cell_aggregate[static_cast<size_t>(cy * nx + cx)];
-    if (a < 0) {
-      a = count++;
-      cl.cell_x.push_back(static_cast<std::int32_t>(cx));
-      cl.cell_y.push_back(static_cast<std::int32_t>(cy));
-    }
-    cl.aggregate[u] = a;
-  }
-  cl.aggregates = count;
-}
-
-// A_c = P^T A P for P the aggregates' indicator. With A = D G (G: the unknowns to the
-// accelerations of Eq. 24; D: the accelerations to (Ap) of Eq. 20 and the samples' rows),
-//   A_c[I][J] = sum_i h_iI . g_iJ,
-// g_iJ = d a_i / d p_J and h_iI = d (sum_{u in I} (Ap)_u) / d a_i, both from particle i's
-// own pairs: a_i enters its own row and, through the pair's antisymmetric gradient, the
-// rows of its fluid neighbours and of its samples. I and J lie within one support of i,
-// so within kReach cells of each other. Fixed chunks of particles, each summed in index
-// order into its own table, added in chunk order: the same bits for any thread count.
-void Simulation::assemble_coarse_operator(const PressureTerms& t, CoarseLevel& cl) const {
-  constexpr int kReach = 2, kSide = 2 * kReach + 1, kSlots = kSide * kSide;
-  constexpr Index kChunk = 16384;
-  const Index n = fluid_.size(), na = cl.aggregates;
-  const Index chunks = std::max<Index>(1, (n + kChunk - 1) / kChunk);
-  const bool samples = settings_.boundary_pressure == BoundaryPressure::Solved;
-  const double m = mass_, dt = t.dt, g3_rho0 = t.gamma3_rho0 / (settings_.rest_density * settings_.rest_density);
-  const std::vector<Index>& agg = cl.aggregate;
-  cl.partial.assign(static_cast<size_t>(chunks * na * kSlots), 0.0);
-  auto slot = [&](Index a, Index b) {
-    const int dx = cl.cell_x[b] - cl.cell_x[a] + kReach, dy = cl.cell_y[b] - cl.cell_y[a] + kReach;
-    if (dx < 0 || dx >= kSide || dy < 0 || dy >= kSide)
-      throw std::logic_error("multilevel: coupled aggregates further apart than the reach");
-    return dy * kSide + dx;
-  };
-#pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
-  for (Index c = 0; c < chunks; ++c) {
-    double* table = cl.partial.data() + c * na * kSlots;
-    AggregateTerms g, h;
-    for (Index i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
-      g.size = h.size = 0;
-      const double inv2 = 1.0 / (fluid_.rho[i] * fluid_.rho[i]);
-      Vec2 sum = Vec2::Zero();
-      for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
-        const Index f = ff_.j[k];
-        const Vec2 gw = ff_.grad[k].cast<double>();
-        sum += gw;
-        g.add(agg[f], (-m / (fluid_.rho[f] * fluid_.rho[f])) * gw);
-        h.add(agg[f], (dt * m) * gw);
-      }
-      g.add(agg[i], -inv2 * (m * sum + t.c_gamma3 * scratch_->grad_b[i]));
-      h.add(agg[i], dt * (m * sum + t.gamma2 * scratch_->grad_b[i]));
-      if (samples)
-        for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
-          const Index b = fb_.j[k];
-          const Vec2 gw = fb_.grad[k].cast<double>();
-          g.add(agg[fluid_.size() + b], -(g3_rho0 * boundary_.volume[b]) * gw);
-          h.add(agg[fluid_.size() + b], (dt * m) * gw);
-        }
-      for (int a = 0; a < h.size; ++a)
-        for (int b = 0; b < g.size; ++b) table[h.id[a] * kSlots + slot(h.id[a], g.id[b])] += h.c[a].dot(g.c[b]);
-    }
-  }
-  // Rows in order, each slot summed over the chunks in order.
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<size_t>(na * 9));
-  for (Index r = 0; r < na; ++r)
-    for (int k = 0; k < kSlots; ++k) {
-      double v = 0.0;
-      bool any = false;
-      for (Index c = 0; c < chunks; ++c) {
-        const double x = cl.partial[static_cast<size_t>((c * na + r) * kSlots + k)];
-        v += x;
-        any = any || x != 0.0;
-      }
-      if (!any) continue;
-      const long cx = cl.cell_x[r] + k % kSide - kReach, cy = cl.cell_y[r] + k / kSide - kReach;
-      triplets.emplace_back(r, cl.cell_aggregate[static_cast<size_t>(cy * cl.nx + cx)], v);
-    }
-  cl.a_c.resize(na, na);
-  cl.a_c.setFromTriplets(triplets.begin(), triplets.end());
-  cl.a_c.makeCompressed();
-}
-
-// The coarse level of this solve: aggregates, R A P, its LU factors.
-void Simulation::multilevel_setup(const PressureTerms& t) {
-  if (!scratch_->coarse) scratch_->coarse = std::make_shared<CoarseLevel>();
-  CoarseLevel& cl = *scratch_->coarse;
-  solver_detail::Stopwatch sw;
-  aggregate_unknowns(cl);
-  const double t_agg = sw.ms();
-  assemble_coarse_operator(t, cl);
-  const double t_asm = sw.ms();
-  static const bool use_lu = env_number("ML_LU", 0.0) != 0.0;
-  if (use_lu) {
-    cl.lu.compute(cl.a_c);
-    cl.factorised = cl.lu.info() == Eigen::Success;
-  } else {
-    cl.sym = CoarseLevel::Matrix(cl.a_c.transpose());
-    cl.sym = -0.5 * (cl.sym + cl.a_c);
-    cl.ldlt.compute(cl.sym);
-    cl.factorised = cl.ldlt.info() == Eigen::Success;
-  }
-  if (std::getenv("ML_DEBUG"))
-    std::fprintf(stderr, "ml: aggregates %ld nnz %ld lu %d ms: aggregate %.2f assemble %.2f factor %.2f\n",
-                 static_cast<long>(cl.aggregates), static_cast<long>(cl.a_c.nonZeros()), cl.factorised ? 1 : 0, t_agg,
-                 t_asm - t_agg, sw.ms() - t_asm);
-}
-
-// One coarse correction: r = s - A x (Eq. 19, 20 and the samples' rows, from the current
-// pressures), then x_u += (A_c^-1 P^T r)_{I(u)} on the aggregated unknowns, clamped at zero
-// as in Eq. 21. Costs one application of A.
-void Simulation::multilevel_correction(const PressureTerms& t) {
-  CoarseLevel& cl = *scratch_->coarse;
-  if (!cl.factorised) return;
-  const Index n = fluid_.size(), nb = boundary_.size();
-  const bool samples = settings_.boundary_pressure == BoundaryPressure::Solved;
-  update_boundary_pressure();
-  compute_pressure_acceleration();
-  std::vector<double>& r = scratch_->err;  // reused: the next sweep overwrites it
-  parallel_for(n, [&](Index i) { r[i] = scratch_->s[i] - pressure_operator_of(i, t); });
-  cl.rc = Eigen::VectorXd::Zero(cl.aggregates);
-  for (Index i = 0; i < n; ++i)
-    if (cl.aggregate[i] >= 0) cl.rc[cl.aggregate[i]] += r[i];
-  if (samples)
-    for (Index b = 0; b < nb; ++b)
-      if (cl.aggregate[n + b] >= 0) cl.rc[cl.aggregate[n + b]] += scratch_->bnd_s[b] - sample_operator_of(b, t);
-  static const bool use_lu = env_number("ML_LU", 0.0) != 0.0;
-  static const int refine = static_cast<int>(env_number("ML_REFINE", 1.0));
-  if (use_lu) {
-    cl.ec = cl.lu.solve(cl.rc);
-  } else {
-    cl.ec = -cl.ldlt.solve(cl.rc);
-    for (int k = 0; k < refine; ++k) cl.ec -= cl.ldlt.solve(Eigen::VectorXd(cl.rc - cl.a_c * cl.ec));
-  }
-  const double inv_rho0_2 = 1.0 / (settings_.rest_density * settings_.rest_density);
-  parallel_for(n, [&](Index i) {
-    if (cl.aggregate[i] < 0) return;
-    const double p = std::max(fluid_.p[i] + cl.ec[cl.aggregate[i]], 0.0);
-    fluid_.p[i] = p;
-    scratch_->p_over_rho2[i] = p / (fluid_.rho[i] * fluid_.rho[i]);
-  });
-  if (samples)
-    parallel_for(nb, [&](Index b) {
-      if (cl.aggregate[n + b] < 0) return;
-      const double p = std::max(boundary_.p[b] + cl.ec[cl.aggregate[n + b]], 0.0);
-      boundary_.p[b] = p;
-      scratch_->pb_over_rho2[b] = p * inv_rho0_2;
-    });
-}
+std::unique_ptr<PressureSolverMethod> make_multilevel_solver() { return std::make_unique<MultilevelSolver>(); }
 
 }  // namespace sluice

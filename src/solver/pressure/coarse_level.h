@@ -1,11 +1,10 @@
 #pragma once
-// The coarse level of the two-level pressure solve (solver.pressure_solver = "multilevel",
-// issue 37): the fluid's and the samples' pressures aggregated by square cells, and the
-// Galerkin operator A_c = P^T A P of the PPE (Eq. 20 and the samples' rows) over them,
-// factorised once per solve.
+// The coarse level of the multilevel pressure solve (solver.pressure_solver = "multilevel",
+// multilevel.cpp): the fluid's and the samples' pressures aggregated by square cells, and
+// the Galerkin operator A_c = P^T A P of the PPE (Eq. 20 and the samples' rows) over them,
+// factorised once per solve (Simulation::build_coarse_level, coarse_level.cpp).
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
-#include <Eigen/SparseLU>
 #include <cstdint>
 #include <vector>
 
@@ -20,9 +19,8 @@ struct CoarseLevel {
   std::vector<Index> aggregate;
   Index aggregates = 0;
   Matrix a_c;
-  Eigen::SparseLU<Matrix> lu;
-  Matrix sym;                             // -(A_c + A_c^T) / 2
-  Eigen::SimplicialLDLT<Matrix> ldlt;     // its factors
+  Matrix symmetric;                    // -(A_c + A_c^T) / 2
+  Eigen::SimplicialLDLT<Matrix> ldlt;  // its factors
   bool factorised = false;
   Eigen::VectorXd rc, ec;  // restricted residual, coarse correction
   // Aggregates are cells: each one's cell, and the cells' aggregates (-1: none) on a grid

@@ -1,0 +1,45 @@
+#include "solver/pressure/system.h"
+
+#include <algorithm>
+
+#include "core/parallel.h"
+#include "solver/internal.h"
+
+namespace sluice {
+
+Index PressureSystem::fluid_count() const { return sim_.fluid_.size(); }
+
+const SolverSettings& PressureSystem::settings() const { return sim_.settings_; }
+
+double PressureSystem::sweep() {
+  const Index n = sim_.fluid_.size();
+  sim_.update_boundary_pressure();
+  const double sum = sim_.jacobi_sweep(block_, terms_);
+  double avg = n ? sum / n : 0.0;
+  // Pressure boundaries: the samples' constraints converge too (their own average), or
+  // their pressures lag the fluid's and stop being constraint forces.
+  if (sim_.settings_.boundary_pressure == BoundaryPressure::Solved && active_samples_ > 0)
+    avg = std::max(avg, sim_.jacobi_update_boundary(terms_) / active_samples_);
+  return avg;
+}
+
+void PressureSystem::build_coarse_level() { sim_.build_coarse_level(terms_); }
+
+bool PressureSystem::coarse_correction() { return sim_.coarse_correction(terms_); }
+
+void PressureSystem::save_previous_iterate() {
+  sim_.scratch_->p_prev = sim_.fluid_.p;
+  sim_.scratch_->pb_prev = sim_.boundary_.p;
+}
+
+void PressureSystem::restore_measured_iterate() {
+  Simulation& s = sim_;
+  s.fluid_.p = s.scratch_->p_prev;
+  s.boundary_.p = s.scratch_->pb_prev;
+  const double inv_rho0_2 = 1.0 / (s.settings_.rest_density * s.settings_.rest_density);
+  parallel_for(s.fluid_.size(),
+               [&](Index i) { s.scratch_->p_over_rho2[i] = s.fluid_.p[i] / (s.fluid_.rho[i] * s.fluid_.rho[i]); });
+  parallel_for(s.boundary_.size(), [&](Index b) { s.scratch_->pb_over_rho2[b] = s.boundary_.p[b] * inv_rho0_2; });
+}
+
+}  // namespace sluice

@@ -1,0 +1,47 @@
+#pragma once
+// The handle through which a PressureSolverMethod (pressure_solver.h) iterates on one
+// step's PPE: built by Simulation::iterate_pressure after prepare_pressure_system (s_i,
+// a_ii, p^(0) and the samples' rows are set up), valid for that call only.
+#include "solver/simulation.h"
+
+namespace sluice {
+
+class PressureSystem {
+ public:
+  // terms: the step's constants (Simulation::pressure_terms); block: the sweep's schedule
+  // (Simulation::plan_jacobi_sweep); active_samples: the boundary samples with a row.
+  PressureSystem(Simulation& sim, const Simulation::PressureTerms& terms, Index block, Index active_samples)
+      : sim_(sim), terms_(terms), block_(block), active_samples_(active_samples) {}
+
+  Index fluid_count() const;
+  Index active_samples() const { return active_samples_; }
+  const SolverSettings& settings() const;
+
+  // One relaxed Jacobi iteration (Algorithm 2's loop body: Eq. 25, then Eq. 24, 20, 21,
+  // 23 for every particle, and Eq. 21 for the samples of pressure boundaries), each update
+  // extrapolated with the weight set below when it is nonzero. Returns the average
+  // predicted compression (Eq. 23) in percent: the fluid's, or with pressure boundaries
+  // the larger of the fluid's and the samples' averages.
+  double sweep();
+
+  // Chebyshev's semi-iteration (pressure_kernels.h, chebyshev_extrapolate).
+  void set_extrapolation_weight(double w) { terms_.chebyshev = w; }  // 0: plain relaxed Jacobi
+  void save_previous_iterate();                                      // p_prev, pb_prev := p, p_b
+  // Puts back the iterate the last sweep measured (p_prev, pb_prev) with its p / rho^2.
+  void restore_measured_iterate();
+
+  // The multilevel scheme's coarse level (coarse_level.h): aggregates of the unknowns
+  // with p > 0 now and the Galerkin operator over them; then a correction from the
+  // current residual (one application of A), false when the coarse operator could not be
+  // factorised (nothing changed).
+  void build_coarse_level();
+  bool coarse_correction();
+
+ private:
+  Simulation& sim_;
+  Simulation::PressureTerms terms_;
+  Index block_;
+  Index active_samples_;
+};
+
+}  // namespace sluice
