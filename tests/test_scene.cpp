@@ -458,7 +458,7 @@ TEST(SceneSettings, PressureSolverChoices) {
   EXPECT_EQ(m.solver.pressure_solver, PressureSolver::Multilevel);
   EXPECT_EQ(m.solver.multilevel_cell, 4.0);
   EXPECT_EQ(m.resolved["solver"]["pressure_solver"], "multilevel");
-  EXPECT_EQ(parse_scene(text, kFile).solver.multilevel_cell, 8.0);
+  EXPECT_EQ(parse_scene(text, kFile).solver.multilevel_cell, 6.0);
   const std::string cell = error_of(text, {"solver.multilevel_cell=1.5"});
   EXPECT_NE(cell.find("/solver/multilevel_cell: value 1.5 is out of range; must be in [2, 64]"), std::string::npos)
       << cell;
