@@ -59,8 +59,12 @@ done
 sha=$(git rev-parse --verify --quiet "$rev^{commit}") || { echo "bench-ab: '$rev' is not a commit here" >&2; exit 2; }
 short=${sha:0:7}
 head=$(git rev-parse --short HEAD)$(git diff --quiet HEAD -- src CMakeLists.txt || echo "+changes")
-[ ${#a_sets[@]} -eq 0 ] || head="$head(${a_sets[*]//--set /})"  # the overrides name A in the CSV
-head=${head// /;}
+# The overrides name A in the CSVs: "abc1234(key=value;key=value)".
+if [ ${#a_sets[@]} -gt 0 ]; then
+  label=""
+  for ((k = 1; k < ${#a_sets[@]}; k += 2)); do label+="${label:+;}${a_sets[k]}"; done
+  head="$head($label)"
+fi
 out=${out:-out/bench-ab/$short}
 mkdir -p "$out"
 
