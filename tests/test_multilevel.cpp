@@ -44,7 +44,9 @@ TEST_P(CoarseOperator, IsTheGalerkinProductOfTheOperator) {
     ASSERT_GT(cl.aggregates, 10);
     ASSERT_GT(fluid_in, n / 2) << "most of the fluid is aggregated";
     ASSERT_LT(fluid_in, n) << "the free surface's clamped particles stay out";
-    if (samples) ASSERT_GT(samples_in, 0) << "pressure boundaries: the samples are unknowns too";
+    if (samples) {
+      ASSERT_GT(samples_in, 0) << "pressure boundaries: the samples are unknowns too";
+    }
     const Eigen::MatrixXd a_c(cl.a_c);
     const double scale = a_c.cwiseAbs().maxCoeff();
     double worst = 0;
@@ -82,16 +84,9 @@ TEST(Multilevel, IterationsDoNotGrowWithTheDepth) {
                                        std::to_string(height) + R"(]}],
       "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.4, 4.2], "lid": false}]})",
                                    {"solver.pressure_solver=" + solver}));
-    double iterations = 0;
-    long steps = 0;
-    realized = 0;
-    while (!sim.finished()) {
-      const StepStats st = sim.step();
-      iterations += st.iterations;
-      realized = std::max(realized, st.density_error_percent);
-      ++steps;
-    }
-    return iterations / static_cast<double>(steps);
+    const test::RunAverages r = test::run_to_end(sim);
+    realized = r.largest_compression;
+    return r.iterations;
   };
   double e_shallow = 0, e_deep = 0, e_jacobi = 0;
   const double shallow = run("multilevel", 0.5, e_shallow), deep = run("multilevel", 4, e_deep);

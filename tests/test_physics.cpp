@@ -253,16 +253,9 @@ TEST(Physics, ChebyshevSolvesADeepColumnInFewerIterations) {
     "boundaries": [{"shape": "box", "min": [0, 0], "max": [0.4, 4.2], "lid": false}]})";
   auto run = [&](const std::string& solver, double& realized) {
     Simulation sim(scene_from_json(column, {"solver.pressure_solver=" + solver}));
-    double iterations = 0;
-    long steps = 0;
-    realized = 0;
-    while (!sim.finished()) {
-      const StepStats st = sim.step();
-      iterations += st.iterations;
-      realized = std::max(realized, st.density_error_percent);
-      ++steps;
-    }
-    return iterations / static_cast<double>(steps);
+    const test::RunAverages r = test::run_to_end(sim);
+    realized = r.largest_compression;
+    return r.iterations;
   };
   double jacobi_error = 0, chebyshev_error = 0;
   const double jacobi = run("jacobi", jacobi_error), chebyshev = run("chebyshev", chebyshev_error);

@@ -3,6 +3,7 @@
 // particle state ordered by id, and a bitwise hash of that state.
 #include <omp.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -63,6 +64,24 @@ inline std::uint64_t state_hash(const Simulation& sim) {
     mix(s.p[i]);
   }
   return h;
+}
+
+// A run to its end: the average solver iterations per step and the largest realized
+// compression (Eq. 15 at a step's start) [%].
+struct RunAverages {
+  double iterations = 0, largest_compression = 0;
+};
+inline RunAverages run_to_end(Simulation& sim) {
+  RunAverages r;
+  long steps = 0;
+  while (!sim.finished()) {
+    const StepStats st = sim.step();
+    r.iterations += st.iterations;
+    r.largest_compression = std::max(r.largest_compression, st.density_error_percent);
+    ++steps;
+  }
+  if (steps > 0) r.iterations /= static_cast<double>(steps);
+  return r;
 }
 
 // Restores the OpenMP thread count when leaving a scope.

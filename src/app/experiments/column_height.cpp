@@ -27,9 +27,9 @@ void column_height_experiment(Context& c) {
     }
   csv.write(c.dir / "column_height.csv");
   c.md += "Columns 0.5 m wide of growing height at h = 0.01, dt = 1 ms, " + fmt(duration, 3) +
-          " s each, tolerance 0.1 %, for the thesis' relaxed Jacobi and its Chebyshev semi-iteration "
-          "(solver.pressure_solver). Compare with the thesis' Figure 6b: with Jacobi, deeper columns need more "
-          "iterations.\n\n";
+          " s each, tolerance 0.1 %, for the thesis' relaxed Jacobi, its Chebyshev semi-iteration and the "
+          "multilevel solve (solver.pressure_solver; a multilevel iteration is a sweep or a coarse correction). "
+          "Compare with the thesis' Figure 6b: with Jacobi, deeper columns need more iterations.\n\n";
   c.table(c.dir / "column_height.csv", {});
   FigureSpec a =
       spec(FigureKind::Series, c.dir / "column_height.csv", "height", {"avg_iterations"}, "iterations_vs_height.png");

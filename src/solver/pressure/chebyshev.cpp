@@ -12,7 +12,7 @@ namespace {
 
 // Chebyshev's residual polynomial is steep at the Jacobi eigenvalue 1, so the modes the
 // operator barely sees grow faster within a solve and the old pressure must be forgotten
-// faster than Jacobi's 0.5 (jacobi.cpp): at 0.5 a closed tank at rest gained 0.99 J/m in
+// faster than Jacobi's 0.5 (pressure_solver.h): at 0.5 a closed tank at rest gained 0.99 J/m in
 // 10 s, at 0.1 0.025 J/m (docs/performance.md, "Pressure solvers").
 constexpr double kChebyshevWarmStartFactor = 0.1;
 

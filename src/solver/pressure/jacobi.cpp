@@ -9,16 +9,10 @@ namespace sluice {
 
 namespace {
 
-// Warm start p^(0) = 0.5 p(t - dt), the choice of [Ihm+14a]. A factor of 1 keeps the
-// part of the previous pressure that the operator A barely sees (lattice-scale,
-// checkerboard-like noise) forever; it then drives particles apart and a column at
-// rest never settles (kinetic energy grows). Halving it every step lets it decay.
-constexpr double kWarmStartFactor = 0.5;
-
 class JacobiSolver final : public PressureSolverMethod {
  public:
   const char* name() const override { return "jacobi"; }
-  double warm_start_factor() const override { return kWarmStartFactor; }
+  double warm_start_factor() const override { return kJacobiWarmStartFactor; }
 
   PressureSolveResult iterate(PressureSystem& system, const PressureSolveLimits& limits) override {
     int l = 0;

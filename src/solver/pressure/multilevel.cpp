@@ -12,15 +12,13 @@ namespace sluice {
 
 namespace {
 
-// The warm start of Jacobi ([Ihm+14a], jacobi.cpp).
-constexpr double kWarmStartFactor = 0.5;
 // A further correction every this many sweeps while the error is above the tolerance.
 constexpr int kCorrectionEvery = 2;
 
 class MultilevelSolver final : public PressureSolverMethod {
  public:
   const char* name() const override { return "multilevel"; }
-  double warm_start_factor() const override { return kWarmStartFactor; }
+  double warm_start_factor() const override { return kJacobiWarmStartFactor; }
 
   // The first sweep fixes the clamp (who is at p = 0 stays out of the coarse level for this
   // solve), then one coarse correction in every solve, even one already within the

@@ -14,6 +14,12 @@ namespace sluice {
 
 class PressureSystem;
 
+// Warm start p^(0) = 0.5 p(t - dt), the choice of [Ihm+14a] (Jacobi, multilevel). A factor
+// of 1 keeps the part of the previous pressure that the operator A barely sees
+// (lattice-scale, checkerboard-like noise) forever; it then drives particles apart and a
+// column at rest never settles (kinetic energy grows). Halving it every step lets it decay.
+constexpr double kJacobiWarmStartFactor = 0.5;
+
 // When iterate stops: the average predicted compression (Eq. 23) within tolerance_percent
 // after at least min_iterations, or after max_iterations in any case.
 struct PressureSolveLimits {
