@@ -68,7 +68,10 @@ void Simulation::aggregate_unknowns(CoarseLevel& cl) const {
   const long nx = x1 - x0 + 1, ny = y1 - y0 + 1;
   cl.nx = nx;
   cl.ny = ny;
-  cl.cell_aggregate.assign(static_cast<size_t>(std::max(0L, nx * ny)), -1);
+  // With headroom, as the neighbour lists' pairs (resize_pairs): a table that grows each
+  // step as the fluid spreads would be allocated and faulted in again each time.
+  resize_pairs(cl.cell_aggregate, static_cast<size_t>(std::max(0L, nx * ny)));
+  std::fill(cl.cell_aggregate.begin(), cl.cell_aggregate.end(), -1);
   cl.cell_x.clear();
   cl.cell_y.clear();
   Index count = 0;
@@ -104,7 +107,8 @@ void Simulation::assemble_coarse_operator(const PressureTerms& t, CoarseLevel& c
   const bool samples = settings_.boundary_pressure == BoundaryPressure::Solved;
   const double m = mass_, dt = t.dt, g3_rho0 = t.gamma3_rho0 / (settings_.rest_density * settings_.rest_density);
   const std::vector<Index>& agg = cl.aggregate;
-  cl.partial.assign(static_cast<size_t>(chunks * na * kSlots), 0.0);
+  resize_pairs(cl.partial, static_cast<size_t>(chunks * na * kSlots));
+  std::fill(cl.partial.begin(), cl.partial.end(), 0.0);
   auto slot = [&](Index a, Index b) {
     const int dx = cl.cell_x[b] - cl.cell_x[a] + kReach, dy = cl.cell_y[b] - cl.cell_y[a] + kReach;
     if (dx < 0 || dx >= kSide || dy < 0 || dy >= kSide)
@@ -140,8 +144,8 @@ void Simulation::assemble_coarse_operator(const PressureTerms& t, CoarseLevel& c
     }
   }
   // Rows in order, each slot summed over the chunks in order.
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<size_t>(na * 9));
+  std::vector<Eigen::Triplet<double>>& triplets = cl.triplets;
+  triplets.clear();
   for (Index r = 0; r < na; ++r)
     for (int k = 0; k < kSlots; ++k) {
       double v = 0.0;

@@ -31,6 +31,7 @@ struct CoarseLevel {
   // The assembly's partial sums: per chunk of particles, per aggregate I, one slot per
   // cell J within kReach cells of I's.
   std::vector<double> partial;
+  std::vector<Eigen::Triplet<double>> triplets;  // A_c's entries, row by row
 };
 
 }  // namespace sluice
