@@ -14,7 +14,7 @@ using namespace solver_detail;
 
 // ---------------------------------------------------------------------------------
 // IISPH pressure solver (chapter 3, Algorithm 2): the PPE's set-up and the step's solve;
-// the iteration schemes (relaxed Jacobi, Chebyshev) are in solver/pressure/.
+// the iteration schemes (relaxed Jacobi, Chebyshev, multilevel) are in solver/pressure/.
 //
 // With the pressure accelerations of Eq. 24, the PPE of Eq. 17 for fluid particle i is
 //   (Ap)_i = dt [ sum_f m_f (a_i - a_f) . grad W_if + gamma2 sum_b m_b (a_i - a_b) . grad W_ib ]
@@ -142,7 +142,7 @@ PressureSolverMethod& Simulation::pressure_method() {
 }
 
 // Algorithm 2's solver loop, run by the chosen scheme (solver/pressure/jacobi.cpp,
-// chebyshev.cpp) through the step's PressureSystem, then the accelerations of the final
+// chebyshev.cpp, multilevel.cpp) through the step's PressureSystem, then the accelerations of the final
 // pressures.
 void Simulation::iterate_pressure(double dt, Index active_samples, StepStats& st) {
   const Index n = fluid_.size();

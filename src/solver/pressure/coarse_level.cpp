@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
+#include "core/check.h"
 #include "core/parallel.h"
 #include "solver/internal.h"
 #include "solver/pressure_kernels.h"
@@ -29,7 +31,8 @@ struct AggregateTerms {
         c[k] += v;
         return;
       }
-    if (size == kMax) throw std::runtime_error("multilevel: a particle touches more than 24 aggregates");
+    // Cells of at least 2 spacings (the key's range): a support spans at most 3 x 3 cells.
+    SLUICE_ASSERT(size < kMax, "a particle touches at most 9 aggregates");
     id[size] = a;
     c[size] = v;
     ++size;
@@ -47,7 +50,11 @@ void Simulation::aggregate_unknowns(CoarseLevel& cl) const {
   const bool samples = settings_.boundary_pressure == BoundaryPressure::Solved;
   const double inv_cell = 1.0 / (settings_.multilevel_cell * setup_.spacing);
   cl.aggregate.assign(static_cast<size_t>(n + nb), -1);
-  auto position = [&](Index u) { return u < n ? fluid_.x[u] : boundary_.x[u - n]; };
+  auto cell_of = [&](Index u) {
+    const Vec2 x = u < n ? fluid_.x[u] : boundary_.x[u - n];
+    return std::pair<long, long>(static_cast<long>(std::floor(x.x() * inv_cell)),
+                                 static_cast<long>(std::floor(x.y() * inv_cell)));
+  };
   auto active = [&](Index u) {
     return u < n ? fluid_.p[u] > 0.0 : samples && scratch_->bnd_aii[u - n] != 0.0 && boundary_.p[u - n] > 0.0;
   };
@@ -55,9 +62,7 @@ void Simulation::aggregate_unknowns(CoarseLevel& cl) const {
   bool any = false;
   for (Index u = 0; u < n + nb; ++u) {
     if (!active(u)) continue;
-    const Vec2 x = position(u);
-    const long cx = static_cast<long>(std::floor(x.x() * inv_cell)),
-               cy = static_cast<long>(std::floor(x.y() * inv_cell));
+    const auto [cx, cy] = cell_of(u);
     if (!any) {
       x0 = x1 = cx;
       y0 = y1 = cy;
@@ -77,9 +82,8 @@ void Simulation::aggregate_unknowns(CoarseLevel& cl) const {
   Index count = 0;
   for (Index u = 0; u < n + nb; ++u) {
     if (!active(u)) continue;
-    const Vec2 x = position(u);
-    const long cx = static_cast<long>(std::floor(x.x() * inv_cell)) - x0,
-               cy = static_cast<long>(std::floor(x.y() * inv_cell)) - y0;
+    const auto [ux, uy] = cell_of(u);
+    const long cx = ux - x0, cy = uy - y0;
     Index& a = cl.cell_aggregate[static_cast<size_t>(cy * nx + cx)];
     if (a < 0) {
       a = count++;
@@ -111,8 +115,7 @@ void Simulation::assemble_coarse_operator(const PressureTerms& t, CoarseLevel& c
   std::fill(cl.partial.begin(), cl.partial.end(), 0.0);
   auto slot = [&](Index a, Index b) {
     const int dx = cl.cell_x[b] - cl.cell_x[a] + kReach, dy = cl.cell_y[b] - cl.cell_y[a] + kReach;
-    if (dx < 0 || dx >= kSide || dy < 0 || dy >= kSide)
-      throw std::logic_error("multilevel: coupled aggregates further apart than the reach");
+    SLUICE_ASSERT(dx >= 0 && dx < kSide && dy >= 0 && dy < kSide, "coupled aggregates lie within kReach cells");
     return dy * kSide + dx;
   };
 #pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
