@@ -5,6 +5,49 @@
 
 namespace sluice {
 
+// a_v of every fluid particle (the pair sums of apply_nonpressure); kViscous: with Eq. 12.
+template <bool kViscous>
+void Simulation::viscous_accelerations(double dt, double avc, std::vector<Vec2>& a_v) {
+  const double nu = settings_.viscosity, rho0 = settings_.rest_density;
+  const Index n = fluid_.size();
+  const double eps = 0.01 * setup_.spacing * setup_.spacing;
+  const bool work = has_moving_boundaries();
+  // m_j / rho_j once per particle, not once per pair (the same bits).
+  std::vector<double>& vol = scratch_->volume;
+  if (kViscous) {
+    vol.resize(n);
+    parallel_for(n, [&](Index i) { vol[i] = mass_ / fluid_.rho[i]; });
+  }
+  parallel_for(n, [&](Index i) {
+    const Vec2 xi = fluid_.x[i], vi = fluid_.v[i];
+    const double rhoi = fluid_.rho[i];
+    Vec2 lap = Vec2::Zero(), art = Vec2::Zero();
+    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
+      const Index j = ff_.j[k];
+      const Vec2 xij = xi - fluid_.x[j], vij = vi - fluid_.v[j], gw = ff_.grad[k].cast<double>();
+      const double r2 = xij.squaredNorm() + eps, vx = vij.dot(xij);
+      if (kViscous) lap += vol[j] * (xij.dot(gw) / r2) * vij;
+      // A select, not a branch: approaching and receding pairs alternate at random, and
+      // adding 0 * grad W leaves the sum's bits as the branch left them.
+      const double pi_ij = mass_ * vx / (r2 * 0.5 * (rhoi + fluid_.rho[j]));
+      art += (vx < 0.0 ? pi_ij : 0.0) * gw;
+    }
+    Vec2 acc = kViscous ? Vec2(2.0 * nu * lap + avc * art) : Vec2(avc * art);
+    double w = 0.0;
+    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
+      const Index b = fb_.j[k];
+      const Vec2 xib = xi - boundary_.x[b], vib = vi - boundary_.v[b], gw = fb_.grad[k].cast<double>();
+      const double r2 = xib.squaredNorm() + eps, vx = vib.dot(xib), vb = boundary_.volume[b];
+      Vec2 a = kViscous ? Vec2((2.0 * nu * vb * (xib.dot(gw) / r2)) * vib) : Vec2(Vec2::Zero());
+      if (vx < 0.0) a += (avc * rho0 * vb * vx / (r2 * 0.5 * (rhoi + rho0))) * gw;
+      acc += a;
+      if (work) w += a.dot(boundary_.v[b]);
+    }
+    a_v[i] = acc;
+    if (work) scratch_->work[i] += dt * mass_ * w;
+  });
+}
+
 // v* = v + dt (a_v + g): the viscosity of Eq. 12 and Monaghan's artificial viscosity
 // (1992, Eq. 4.1; the thesis has none), against fluid and boundary neighbours (boundary
 // neighbours with their own velocity, m_b = rho0 V_b, rho_b = rho0):
@@ -14,7 +57,7 @@ namespace sluice {
 // the boundary velocity, is the boundaries' work on the fluid (scratch_->work).
 void Simulation::apply_nonpressure(double dt) {
   const Vec2 g = settings_.gravity;
-  const double nu = settings_.viscosity, rho0 = settings_.rest_density;
+  const double nu = settings_.viscosity;
   const double avc = settings_.artificial_viscosity * sound_speed_ * setup_.spacing;
   const Index n = fluid_.size();
   if (nu <= 0.0 && avc <= 0.0) {
@@ -23,40 +66,12 @@ void Simulation::apply_nonpressure(double dt) {
   }
   std::vector<Vec2>& a_v = scratch_->a_p;  // reused as scratch: a_p is recomputed later
   a_v.resize(n);
-  const double eps = 0.01 * setup_.spacing * setup_.spacing;
-  const bool work = has_moving_boundaries();
-  // m_j / rho_j once per particle, not once per pair (the same bits).
-  std::vector<double>& vol = scratch_->volume;
-  vol.resize(n);
-  parallel_for(n, [&](Index i) { vol[i] = mass_ / fluid_.rho[i]; });
-  parallel_for(n, [&](Index i) {
-    const Vec2 xi = fluid_.x[i], vi = fluid_.v[i];
-    const double rhoi = fluid_.rho[i];
-    Vec2 lap = Vec2::Zero(), art = Vec2::Zero();
-    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
-      const Index j = ff_.j[k];
-      const Vec2 xij = xi - fluid_.x[j], vij = vi - fluid_.v[j], gw = ff_.grad[k].cast<double>();
-      const double r2 = xij.squaredNorm() + eps, vx = vij.dot(xij);
-      lap += vol[j] * (xij.dot(gw) / r2) * vij;
-      // A select, not a branch: approaching and receding pairs alternate at random, and
-      // adding 0 * grad W leaves the sum's bits as the branch left them.
-      const double pi_ij = mass_ * vx / (r2 * 0.5 * (rhoi + fluid_.rho[j]));
-      art += (vx < 0.0 ? pi_ij : 0.0) * gw;
-    }
-    Vec2 acc = 2.0 * nu * lap + avc * art;
-    double w = 0.0;
-    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
-      const Index b = fb_.j[k];
-      const Vec2 xib = xi - boundary_.x[b], vib = vi - boundary_.v[b], gw = fb_.grad[k].cast<double>();
-      const double r2 = xib.squaredNorm() + eps, vx = vib.dot(xib), vb = boundary_.volume[b];
-      Vec2 a = (2.0 * nu * vb * (xib.dot(gw) / r2)) * vib;
-      if (vx < 0.0) a += (avc * rho0 * vb * vx / (r2 * 0.5 * (rhoi + rho0))) * gw;
-      acc += a;
-      if (work) w += a.dot(boundary_.v[b]);
-    }
-    a_v[i] = acc;
-    if (work) scratch_->work[i] += dt * mass_ * w;
-  });
+  // Without physical viscosity (the default) the pass skips Eq. 12's terms, a division and
+  // a gather per pair: the same bits, as those terms are exactly zero then.
+  if (nu > 0.0)
+    viscous_accelerations<true>(dt, avc, a_v);
+  else
+    viscous_accelerations<false>(dt, avc, a_v);
   parallel_for(n, [&](Index i) { fluid_.v[i] += dt * (a_v[i] + g); });
 }
 

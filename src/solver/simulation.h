@@ -109,8 +109,10 @@ class Simulation {
   void settle();                                          // TimeSettings::settle, before t = 0
   void measure_energy(StepStats& st) const;
   void find_neighbors_phase();
-  void compute_density();                               // grad W per pair, then Eq. 13 + section 4.1
-  void apply_nonpressure(double dt);                    // Eq. 12 + gravity: v* = v + dt (a_v + g)
+  void compute_density();             // grad W per pair, then Eq. 13 + section 4.1
+  void apply_nonpressure(double dt);  // Eq. 12 + gravity: v* = v + dt (a_v + g)
+  template <bool kViscous>
+  void viscous_accelerations(double dt, double avc, std::vector<Vec2>& a_v);  // its pair sums
   void solve_pressure_iisph(double dt, StepStats& st);  // prepare_pressure_system, then iterate_pressure
   Index prepare_pressure_system(double dt);             // Eq. 19, 22/26, p^(0); returns the samples with a row
   double extrapolation_coupling(Index i) const;         // a_ii's share of p_i through the neighbours' p_b (Eq. 25)

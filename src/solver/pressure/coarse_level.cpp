@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -18,24 +20,42 @@ namespace sluice {
 
 namespace {
 // A particle's acceleration (Eq. 24) and its (Ap) contributions as functions of the
-// aggregates' pressures: at most this many distinct aggregates each.
+// aggregates' pressures, per distinct aggregate: g_iJ, and h_iJ / (dt m) less the
+// particle's own term. Both come from the same pairs, so they share the aggregates.
 struct AggregateTerms {
   static constexpr int kMax = 24;
   Index id[kMax];
-  Vec2 c[kMax];
-  int size = 0;
-  void add(Index a, const Vec2& v) {
+  Vec2 g[kMax], h[kMax];
+  int size = 0, last = 0;
+  void reset(Index own) {
+    size = 0;
+    last = 0;
+    if (own >= 0) {
+      id[0] = own;
+      g[0] = h[0] = Vec2::Zero();
+      size = 1;
+    }
+  }
+  void add(Index a, const Vec2& gv, const Vec2& hv) {
     if (a < 0) return;
+    if (size > 0 && id[last] == a) {  // neighbours come in index order, mostly cell by cell
+      g[last] += gv;
+      h[last] += hv;
+      return;
+    }
     for (int k = 0; k < size; ++k)
       if (id[k] == a) {
-        c[k] += v;
+        g[k] += gv;
+        h[k] += hv;
+        last = k;
         return;
       }
     // Cells of at least 2 spacings (the key's range): a support spans at most 3 x 3 cells.
     SLUICE_ASSERT(size < kMax, "a particle touches at most 9 aggregates");
     id[size] = a;
-    c[size] = v;
-    ++size;
+    g[size] = gv;
+    h[size] = hv;
+    last = size++;
   }
 };
 
@@ -46,49 +66,49 @@ struct AggregateTerms {
 // solver.multilevel_cell spacings, numbered in order of first appearance. The unknowns
 // clamped at zero (the free surface) stay out for the rest of the solve.
 void Simulation::aggregate_unknowns(CoarseLevel& cl) const {
-  const Index n = fluid_.size(), nb = boundary_.size();
+  const Index n = fluid_.size(), nb = boundary_.size(), nu = n + nb;
   const bool samples = settings_.boundary_pressure == BoundaryPressure::Solved;
   const double inv_cell = 1.0 / (settings_.multilevel_cell * setup_.spacing);
-  cl.aggregate.assign(static_cast<size_t>(n + nb), -1);
-  auto cell_of = [&](Index u) {
-    const Vec2 x = u < n ? fluid_.x[u] : boundary_.x[u - n];
-    return std::pair<long, long>(static_cast<long>(std::floor(x.x() * inv_cell)),
-                                 static_cast<long>(std::floor(x.y() * inv_cell)));
-  };
-  auto active = [&](Index u) {
-    return u < n ? fluid_.p[u] > 0.0 : samples && scratch_->bnd_aii[u - n] != 0.0 && boundary_.p[u - n] > 0.0;
-  };
-  long x0 = 0, y0 = 0, x1 = -1, y1 = -1;
-  bool any = false;
-  for (Index u = 0; u < n + nb; ++u) {
-    if (!active(u)) continue;
-    const auto [cx, cy] = cell_of(u);
-    if (!any) {
-      x0 = x1 = cx;
-      y0 = y1 = cy;
-      any = true;
+  constexpr std::int32_t kOut = std::numeric_limits<std::int32_t>::min();
+  cl.aggregate.assign(static_cast<size_t>(nu), -1);
+  cl.unknown_x.resize(static_cast<size_t>(nu));
+  cl.unknown_y.resize(static_cast<size_t>(nu));
+  // Each unknown's cell, in parallel; the numbering below is serial (order of appearance).
+  parallel_for(nu, [&](Index u) {
+    const bool active =
+        u < n ? fluid_.p[u] > 0.0 : samples && scratch_->bnd_aii[u - n] != 0.0 && boundary_.p[u - n] > 0.0;
+    if (!active) {
+      cl.unknown_x[u] = kOut;
+      return;
     }
-    x0 = std::min(x0, cx), x1 = std::max(x1, cx), y0 = std::min(y0, cy), y1 = std::max(y1, cy);
+    const Vec2 x = u < n ? fluid_.x[u] : boundary_.x[u - n];
+    cl.unknown_x[u] = static_cast<std::int32_t>(std::floor(x.x() * inv_cell));
+    cl.unknown_y[u] = static_cast<std::int32_t>(std::floor(x.y() * inv_cell));
+  });
+  std::int32_t x0 = std::numeric_limits<std::int32_t>::max(), y0 = x0, x1 = kOut, y1 = kOut;
+  for (Index u = 0; u < nu; ++u) {
+    if (cl.unknown_x[u] == kOut) continue;
+    x0 = std::min(x0, cl.unknown_x[u]), x1 = std::max(x1, cl.unknown_x[u]);
+    y0 = std::min(y0, cl.unknown_y[u]), y1 = std::max(y1, cl.unknown_y[u]);
   }
-  const long nx = x1 - x0 + 1, ny = y1 - y0 + 1;
+  const long nx = x1 >= x0 ? long{x1} - x0 + 1 : 0, ny = y1 >= y0 ? long{y1} - y0 + 1 : 0;
   cl.nx = nx;
   cl.ny = ny;
   // With headroom, as the neighbour lists' pairs (resize_pairs): a table that grows each
   // step as the fluid spreads would be allocated and faulted in again each time.
-  resize_pairs(cl.cell_aggregate, static_cast<size_t>(std::max(0L, nx * ny)));
+  resize_pairs(cl.cell_aggregate, static_cast<size_t>(nx * ny));
   std::fill(cl.cell_aggregate.begin(), cl.cell_aggregate.end(), -1);
   cl.cell_x.clear();
   cl.cell_y.clear();
   Index count = 0;
-  for (Index u = 0; u < n + nb; ++u) {
-    if (!active(u)) continue;
-    const auto [ux, uy] = cell_of(u);
-    const long cx = ux - x0, cy = uy - y0;
+  for (Index u = 0; u < nu; ++u) {
+    if (cl.unknown_x[u] == kOut) continue;
+    const std::int32_t cx = cl.unknown_x[u] - x0, cy = cl.unknown_y[u] - y0;
     Index& a = cl.cell_aggregate[static_cast<size_t>(cy * nx + cx)];
     if (a < 0) {
       a = count++;
-      cl.cell_x.push_back(static_cast<std::int32_t>(cx));
-      cl.cell_y.push_back(static_cast<std::int32_t>(cy));
+      cl.cell_x.push_back(cx);
+      cl.cell_y.push_back(cy);
     }
     cl.aggregate[u] = a;
   }
@@ -113,43 +133,62 @@ void Simulation::assemble_coarse_operator(const PressureTerms& t, CoarseLevel& c
   const std::vector<Index>& agg = cl.aggregate;
   resize_pairs(cl.partial, static_cast<size_t>(chunks * na * kSlots));
   std::fill(cl.partial.begin(), cl.partial.end(), 0.0);
-  auto slot = [&](Index a, Index b) {
-    const int dx = cl.cell_x[b] - cl.cell_x[a] + kReach, dy = cl.cell_y[b] - cl.cell_y[a] + kReach;
-    SLUICE_ASSERT(dx >= 0 && dx < kSide && dy >= 0 && dy < kSide, "coupled aggregates lie within kReach cells");
-    return dy * kSide + dx;
-  };
+  // g_iJ's neighbour coefficient once per particle rather than once per pair (one division).
+  std::vector<double>& coef = cl.neg_m_over_rho2;
+  coef.resize(static_cast<size_t>(n));
+  parallel_for(n, [&](Index f) { coef[f] = -m / (fluid_.rho[f] * fluid_.rho[f]); });
+
 #pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
   for (Index c = 0; c < chunks; ++c) {
     double* table = cl.partial.data() + c * na * kSlots;
-    AggregateTerms g, h;
+    AggregateTerms at;
     for (Index i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
-      g.size = h.size = 0;
+      at.reset(agg[i]);
       const double inv2 = 1.0 / (fluid_.rho[i] * fluid_.rho[i]);
       Vec2 sum = Vec2::Zero();
       for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
         const Index f = ff_.j[k];
         const Vec2 gw = ff_.grad[k].cast<double>();
         sum += gw;
-        g.add(agg[f], (-m / (fluid_.rho[f] * fluid_.rho[f])) * gw);
-        h.add(agg[f], (dt * m) * gw);
+        at.add(agg[f], coef[f] * gw, gw);
       }
-      g.add(agg[i], -inv2 * (m * sum + t.c_gamma3 * scratch_->grad_b[i]));
-      h.add(agg[i], dt * (m * sum + t.gamma2 * scratch_->grad_b[i]));
       if (samples)
         for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
           const Index b = fb_.j[k];
           const Vec2 gw = fb_.grad[k].cast<double>();
-          g.add(agg[fluid_.size() + b], -(g3_rho0 * boundary_.volume[b]) * gw);
-          h.add(agg[fluid_.size() + b], (dt * m) * gw);
+          at.add(agg[n + b], -(g3_rho0 * boundary_.volume[b]) * gw, gw);
         }
-      for (int a = 0; a < h.size; ++a)
-        for (int b = 0; b < g.size; ++b) table[h.id[a] * kSlots + slot(h.id[a], g.id[b])] += h.c[a].dot(g.c[b]);
+      for (int a = 0; a < at.size; ++a) at.h[a] *= dt * m;
+      if (agg[i] >= 0) {  // slot 0: the particle's own terms
+        at.g[0] += -inv2 * (m * sum + t.c_gamma3 * scratch_->grad_b[i]);
+        at.h[0] += dt * (m * sum + t.gamma2 * scratch_->grad_b[i]);
+      }
+      if (at.size == 1) {  // inside a cell
+        table[at.id[0] * kSlots + kSlots / 2] += at.h[0].dot(at.g[0]);
+        continue;
+      }
+      int cx[AggregateTerms::kMax], cy[AggregateTerms::kMax];
+      for (int a = 0; a < at.size; ++a) cx[a] = cl.cell_x[at.id[a]], cy[a] = cl.cell_y[at.id[a]];
+      for (int a = 0; a < at.size; ++a) {
+        double* row = table + at.id[a] * kSlots;
+        for (int b = 0; b < at.size; ++b) {
+          const int dx = cx[b] - cx[a] + kReach, dy = cy[b] - cy[a] + kReach;
+          SLUICE_ASSERT(dx >= 0 && dx < kSide && dy >= 0 && dy < kSide, "coupled aggregates lie within kReach cells");
+          row[dy * kSide + dx] += at.h[a].dot(at.g[b]);
+        }
+      }
     }
   }
-  // Rows in order, each slot summed over the chunks in order.
-  std::vector<Eigen::Triplet<double>>& triplets = cl.triplets;
-  triplets.clear();
-  for (Index r = 0; r < na; ++r)
+  // Each row's slots summed over the chunks in order (rows in parallel), then A_c filled
+  // row by row with its columns sorted.
+  resize_pairs(cl.slot_sum, static_cast<size_t>(na * kSlots));
+  cl.row_start.assign(static_cast<size_t>(na) + 1, 0);
+  std::vector<double>& sum = cl.slot_sum;
+  std::vector<int>& start = cl.row_start;
+  std::vector<std::uint8_t>& entry = cl.slot_entry;  // a slot is an entry when any chunk touched it
+  resize_pairs(entry, static_cast<size_t>(na * kSlots));
+  parallel_for(na, [&](Index r) {
+    int count = 0;
     for (int k = 0; k < kSlots; ++k) {
       double v = 0.0;
       bool any = false;
@@ -158,13 +197,34 @@ void Simulation::assemble_coarse_operator(const PressureTerms& t, CoarseLevel& c
         v += x;
         any = any || x != 0.0;
       }
-      if (!any) continue;
-      const long cx = cl.cell_x[r] + k % kSide - kReach, cy = cl.cell_y[r] + k / kSide - kReach;
-      triplets.emplace_back(r, cl.cell_aggregate[static_cast<size_t>(cy * cl.nx + cx)], v);
+      sum[static_cast<size_t>(r * kSlots + k)] = v;
+      entry[static_cast<size_t>(r * kSlots + k)] = any;
+      count += any;
     }
+    start[static_cast<size_t>(r) + 1] = count;
+  });
+  for (Index r = 0; r < na; ++r) start[static_cast<size_t>(r) + 1] += start[static_cast<size_t>(r)];
   cl.a_c.resize(na, na);
-  cl.a_c.setFromTriplets(triplets.begin(), triplets.end());
-  cl.a_c.makeCompressed();
+  cl.a_c.resizeNonZeros(start[static_cast<size_t>(na)]);
+  std::copy(start.begin(), start.end(), cl.a_c.outerIndexPtr());
+  int* column = cl.a_c.innerIndexPtr();
+  double* value = cl.a_c.valuePtr();
+  parallel_for(na, [&](Index r) {
+    int e = start[static_cast<size_t>(r)];
+    for (int k = 0; k < kSlots; ++k) {
+      if (!entry[static_cast<size_t>(r * kSlots + k)]) continue;
+      const double v = sum[static_cast<size_t>(r * kSlots + k)];
+      const long cx = cl.cell_x[r] + k % kSide - kReach, cy = cl.cell_y[r] + k / kSide - kReach;
+      const int col = cl.cell_aggregate[static_cast<size_t>(cy * cl.nx + cx)];
+      int at = e++;  // insertion by column
+      for (; at > start[static_cast<size_t>(r)] && column[at - 1] > col; --at) {
+        column[at] = column[at - 1];
+        value[at] = value[at - 1];
+      }
+      column[at] = col;
+      value[at] = v;
+    }
+  });
 }
 
 // The coarse level of this solve: aggregates, P^T A P, and the factors of its symmetric
@@ -180,8 +240,9 @@ void Simulation::build_coarse_level(const PressureTerms& t) {
   CoarseLevel& cl = *scratch_->coarse;
   aggregate_unknowns(cl);
   assemble_coarse_operator(t, cl);
-  cl.symmetric = CoarseLevel::Matrix(cl.a_c.transpose());
-  cl.symmetric = -0.5 * (cl.symmetric + cl.a_c);
+  // The row-major A_c's storage is A_c^T's column-major one.
+  const CoarseLevel::Matrix a_t = cl.a_c.transpose(), a = cl.a_c;
+  cl.symmetric = -0.5 * (a_t + a);
   cl.ldlt.compute(cl.symmetric);
   cl.factorised = cl.aggregates > 0 && cl.ldlt.info() == Eigen::Success;
 }

@@ -14,11 +14,12 @@ namespace sluice {
 
 struct CoarseLevel {
   using Matrix = Eigen::SparseMatrix<double>;
+  using RowMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
   // Per unknown (fluid particles 0..n-1, then boundary samples): its aggregate, or -1 for
   // one that the first sweep left clamped at p = 0 (it stays out for the solve).
   std::vector<Index> aggregate;
   Index aggregates = 0;
-  Matrix a_c;
+  RowMatrix a_c;                       // assembled row by row
   Matrix symmetric;                    // -(A_c + A_c^T) / 2
   Eigen::SimplicialLDLT<Matrix> ldlt;  // its factors
   bool factorised = false;
@@ -26,12 +27,17 @@ struct CoarseLevel {
   // Aggregates are cells: each one's cell, and the cells' aggregates (-1: none) on a grid
   // of nx columns.
   std::vector<std::int32_t> cell_x, cell_y;
+  std::vector<std::int32_t> unknown_x, unknown_y;  // each unknown's cell; INT32_MIN: not aggregated
   std::vector<Index> cell_aggregate;
   long nx = 0, ny = 0;
+
   // The assembly's partial sums: per chunk of particles, per aggregate I, one slot per
   // cell J within kReach cells of I's.
   std::vector<double> partial;
-  std::vector<Eigen::Triplet<double>> triplets;  // A_c's entries, row by row
+  std::vector<double> slot_sum;          // the chunks' sums, per aggregate and slot
+  std::vector<std::uint8_t> slot_entry;  // whether any chunk touched the slot
+  std::vector<int> row_start;            // A_c's row offsets
+  std::vector<double> neg_m_over_rho2;   // -m / rho_f^2 per fluid particle (the same bits as per pair)
 };
 
 }  // namespace sluice
