@@ -285,6 +285,43 @@ TEST(Neighbors, QuerySetDifferentFromPoints) {
   expect_same_sets(q, ring, h, true);
 }
 
+// Walls queried by every fluid particle (mark_reachable_cells): a query from a cell with
+// no wall point within reach skips its cells at once; every list stays what it was, in
+// the same order, for queries inside the box, at its edges and outside it.
+TEST(Neighbors, ReachableCellsLeaveTheListsUnchanged) {
+  const double h = 0.02;
+  const CubicSpline2D k(h);
+  // A box outline of two layers (enough points that the two strays fall outside the
+  // 0.1 % quantiles: they sit in the outlier cell).
+  Points walls;
+  for (int i = 0; i <= 500; ++i)
+    for (int layer = 0; layer < 2; ++layer) {
+      const double t = i * 0.002, d = -layer * 0.002;
+      walls.insert(walls.end(), {{t, d}, {t, 1.0 - d}, {d, t}, {1.0 - d, t}});
+    }
+  walls.emplace_back(40.0, 40.0);
+  walls.emplace_back(40.01, 40.0);
+  Points query = uniform_points(3000, {-0.2, -0.2}, {1.2, 1.2}, 21);
+  query.emplace_back(40.005, 40.0);  // among the strays
+  query.emplace_back(-7.0, 3.0);     // far outside the box
+  SpatialHashGrid plain, marked;
+  plain.build(walls, k.support(), 1024.0);
+  marked.build(walls, k.support(), 1024.0);
+  marked.mark_reachable_cells();
+  ASSERT_TRUE(marked.dense());
+  NeighborLists a, b;
+  find_neighbors(query, plain, k, false, {}, a);
+  find_neighbors(query, marked, k, false, {}, b);
+  EXPECT_EQ(a.offset, b.offset);
+  EXPECT_EQ(a.j, b.j);
+  Index skipped_inside = 0;  // queries inside the tank, away from the walls, with no pairs
+  for (Index i = 0; i < static_cast<Index>(query.size()); ++i)
+    skipped_inside +=
+        query[i].x() > 0.2 && query[i].x() < 0.8 && query[i].y() > 0.2 && query[i].y() < 0.8 && a.count(i) == 0;
+  EXPECT_GT(skipped_inside, 0);
+  expect_same_sets(query, walls, h, false);
+}
+
 TEST(Neighbors, PairCacheMatchesKernel) {
   const double h = 0.02;
   const CubicSpline2D k(h);

@@ -93,6 +93,7 @@ Simulation::Simulation(const SimulationSetup& setup)
   } else {
     // Walls at rest: a grid with many cells per point (built once) and volumes once.
     boundary_grid_.build(boundary_.x, kernel_.support(), /*cells_per_point=*/1024.0);
+    boundary_grid_.mark_reachable_cells();  // most fluid particles have no wall in reach
     std::vector<Index> all(static_cast<size_t>(nb));
     for (Index b = 0; b < nb; ++b) all[b] = b;
     compute_volumes(boundary_grid_, all, boundary_.volume);

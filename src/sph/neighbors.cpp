@@ -14,6 +14,7 @@ namespace sluice {
 void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius, double cells_per_point) {
   const size_t n = points.size();
   points_ = &points;
+  reach_.clear();
   // Cells slightly larger than radius / kReach: x * inv_cell_ is rounded, and two points
   // closer than `radius` must never land kReach + 1 cells apart (e.g. 12.8 and 12.9 with
   // radius 0.1: 255.99999999999997 and 258 after scaling by 20).
@@ -34,12 +35,16 @@ void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius, doub
     return true;
   };
   if (n > 0) {
+    // Minima and maxima are exact: the same box for any thread count.
     double minx = points[0].x(), maxx = minx, miny = points[0].y(), maxy = miny;
-    for (const Vec2& p : points) {
-      minx = std::min(minx, p.x());
-      maxx = std::max(maxx, p.x());
-      miny = std::min(miny, p.y());
-      maxy = std::max(maxy, p.y());
+#pragma omp parallel for reduction(min                         \
+                                   : minx, miny) reduction(max \
+                                                           : maxx, maxy) if (n >= static_cast <size_t>(kParallelMin))
+    for (size_t i = 0; i < n; ++i) {
+      minx = std::min(minx, points[i].x());
+      maxx = std::max(maxx, points[i].x());
+      miny = std::min(miny, points[i].y());
+      maxy = std::max(maxy, points[i].y());
     }
     dense_ = fit_box(minx, maxx, miny, maxy);
     if (!dense_ && n >= 64) {
@@ -65,13 +70,15 @@ void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius, doub
   }
   if (dense_) {
     cells = static_cast<std::uint32_t>(nx_ * ny_);
-    outliers_ = 0;
+    size_t outliers = 0;
+#pragma omp parallel for reduction(+ : outliers) if (n >= static_cast <size_t>(kParallelMin))
     for (size_t i = 0; i < n; ++i) {
       const std::int64_t cx = cell_coord(points[i].x()) - x0_, cy = cell_coord(points[i].y()) - y0_;
       const bool inside = cx >= 0 && cx < nx_ && cy >= 0 && cy < ny_;
       key_[i] = inside ? static_cast<std::uint32_t>(cy * nx_ + cx) : cells;
-      outliers_ += !inside;
+      outliers += !inside;
     }
+    outliers_ = outliers;
     if (outliers_ > n / 100 + 16)
       dense_ = false;  // too many: hash instead
     else
@@ -80,6 +87,7 @@ void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius, doub
   if (!dense_) {
     cells = std::bit_ceil(static_cast<std::uint32_t>(std::max<size_t>(2 * n, 64)));
     mask_ = cells - 1;
+#pragma omp parallel for if (n >= static_cast <size_t>(kParallelMin))
     for (size_t i = 0; i < n; ++i) key_[i] = bucket(cell_coord(points[i].x()), cell_coord(points[i].y()));
   }
   // Counting sort by cell: serial, O(n), deterministic.
@@ -94,6 +102,28 @@ void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius, doub
     entries_[e] = static_cast<Index>(i);
     pos_[e] = points[i];
   }
+}
+
+void SpatialHashGrid::mark_reachable_cells() {
+  reach_.clear();
+  if (!dense_) return;
+  const size_t cells = static_cast<size_t>(nx_ * ny_);
+  // Dilate the occupied cells by kReach along x, then along y.
+  std::vector<std::uint8_t> along_x(cells, 0);
+  for (std::int64_t y = 0; y < ny_; ++y)
+    for (std::int64_t x = 0; x < nx_; ++x) {
+      const std::int64_t c = y * nx_ + x;
+      if (start_[c + 1] == start_[c]) continue;
+      for (std::int64_t d = std::max<std::int64_t>(x - kReach, 0); d <= std::min(x + kReach, nx_ - 1); ++d)
+        along_x[static_cast<size_t>(y * nx_ + d)] = 1;
+    }
+  reach_.assign(cells, 0);
+  for (std::int64_t y = 0; y < ny_; ++y)
+    for (std::int64_t x = 0; x < nx_; ++x) {
+      if (!along_x[static_cast<size_t>(y * nx_ + x)]) continue;
+      for (std::int64_t d = std::max<std::int64_t>(y - kReach, 0); d <= std::min(y + kReach, ny_ - 1); ++d)
+        reach_[static_cast<size_t>(d * nx_ + x)] = 1;
+    }
 }
 
 // One query per particle: each thread lists the pairs of a contiguous chunk of queries
