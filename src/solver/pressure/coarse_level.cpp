@@ -121,13 +121,15 @@ void Simulation::aggregate_unknowns(CoarseLevel& cl) const {
 // g_iJ = d a_i / d p_J and h_iI = d (sum_{u in I} (Ap)_u) / d a_i, both from particle i's
 // own pairs: a_i enters its own row and, through the pair's antisymmetric gradient, the
 // rows of its fluid neighbours and of its samples. I and J lie within one support of i,
-// so within kReach cells of each other. Fixed chunks of particles, each summed in index
-// order into its own table, added in chunk order: the same bits for any thread count.
+// so within kReach cells of each other. Chunks of particles set by n alone (up to 8, for
+// load balance without a table per 2048 particles), each summed in index order into its
+// own table, added in chunk order: the same bits for any thread count.
 void Simulation::assemble_coarse_operator(const PressureTerms& t, CoarseLevel& cl) const {
   constexpr int kReach = 2, kSide = 2 * kReach + 1, kSlots = kSide * kSide;
-  constexpr Index kChunk = 16384;
+  constexpr Index kMinChunk = 2048, kMaxChunks = 8;
   const Index n = fluid_.size(), na = cl.aggregates;
-  const Index chunks = std::max<Index>(1, (n + kChunk - 1) / kChunk);
+  const Index chunks = std::clamp<Index>((n + kMinChunk - 1) / kMinChunk, 1, kMaxChunks);
+  const Index chunk = (n + chunks - 1) / chunks;
   const bool samples = settings_.boundary_pressure == BoundaryPressure::Solved;
   const double m = mass_, dt = t.dt, g3_rho0 = t.gamma3_rho0 / (settings_.rest_density * settings_.rest_density);
   const std::vector<Index>& agg = cl.aggregate;
@@ -142,7 +144,7 @@ void Simulation::assemble_coarse_operator(const PressureTerms& t, CoarseLevel& c
   for (Index c = 0; c < chunks; ++c) {
     double* table = cl.partial.data() + c * na * kSlots;
     AggregateTerms at;
-    for (Index i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
+    for (Index i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i) {
       at.reset(agg[i]);
       const double inv2 = 1.0 / (fluid_.rho[i] * fluid_.rho[i]);
       Vec2 sum = Vec2::Zero();
@@ -227,10 +229,10 @@ void Simulation::assemble_coarse_operator(const PressureTerms& t, CoarseLevel& c
   });
 }
 
-// The coarse level of this solve: aggregates, P^T A P, and the factors of its symmetric
-// part. A_c is symmetric up to the rows' densities (A = D G with D = -dt rho_i^2 G^T for
-// the fluid's rows), so -(A_c + A_c^T) / 2 is positive definite and its LDL^T factors,
-// with one step of refinement against A_c itself, solve A_c e = r (coarse_correction).
+// The coarse level of this solve: aggregates, P^T A P, and its symmetric part. A_c is
+// symmetric up to the rows' densities (A = D G with D = -dt rho_i^2 G^T for the fluid's
+// rows), so -(A_c + A_c^T) / 2 is positive definite and its LDL^T factors, with one step
+// of refinement against A_c itself, solve A_c e = r (coarse_correction).
 void Simulation::build_coarse_level(const PressureTerms& t) {
   if (settings_.boundary_pressure == BoundaryPressure::Extrapolation)
     throw std::invalid_argument(
@@ -243,23 +245,47 @@ void Simulation::build_coarse_level(const PressureTerms& t) {
   // The row-major A_c's storage is A_c^T's column-major one.
   const CoarseLevel::Matrix a_t = cl.a_c.transpose(), a = cl.a_c;
   cl.symmetric = -0.5 * (a_t + a);
-  cl.ldlt.compute(cl.symmetric);
-  cl.factorised = cl.aggregates > 0 && cl.ldlt.info() == Eigen::Success;
+  cl.factorised = false;
+  cl.factor_pending = cl.aggregates > 0;  // factorised by the first correction, beside its residual
 }
 
 // One coarse correction: r = s - A x (Eq. 19, 20 and the samples' rows, from the current
 // pressures), then x_u += (A_c^-1 P^T r)_{I(u)} on the aggregated unknowns, clamped at zero
-// as in Eq. 21. Costs one application of A. Returns false (and changes nothing) when the
-// coarse operator could not be factorised.
+// as in Eq. 21. Costs one application of A. The first correction of a solve also
+// factorises A_c's symmetric part: Eigen's factorisation is serial, so one thread takes it
+// while the others start on the residual's two passes, and joins them when it is done
+// (neither depends on the other; each value is computed the same way by any thread).
+// Returns false (and changes nothing) when the coarse operator could not be factorised.
 bool Simulation::coarse_correction(const PressureTerms& t) {
   CoarseLevel& cl = *scratch_->coarse;
-  if (!cl.factorised) return false;
+  if (cl.aggregates == 0) return false;
   const Index n = fluid_.size(), nb = boundary_.size();
   const bool samples = settings_.boundary_pressure == BoundaryPressure::Solved;
   update_boundary_pressure();
-  compute_pressure_acceleration();
-  std::vector<double>& r = scratch_->err;  // reused: the next sweep overwrites it
-  parallel_for(n, [&](Index i) { r[i] = scratch_->s[i] - pressure_operator_of(i, t); });
+  const PressureTerms t_acc = pressure_terms(0.0);  // as compute_pressure_acceleration
+  std::vector<Vec2>& acc = scratch_->a_p;
+  acc.resize(static_cast<size_t>(n));
+  std::vector<double>& r = cl.residual;
+  r.resize(static_cast<size_t>(n));
+  constexpr Index kResidualGrain = 4096;  // particles per task: a few dozen tasks per pass
+  const bool factorise = cl.factor_pending;
+  cl.factor_pending = false;
+#pragma omp parallel if (n >= kParallelMin)
+#pragma omp single
+  {
+    if (factorise) {
+#pragma omp task
+      {
+        cl.ldlt.compute(cl.symmetric);
+        cl.factorised = cl.ldlt.info() == Eigen::Success;
+      }
+    }
+#pragma omp taskloop grainsize(kResidualGrain)
+    for (Index i = 0; i < n; ++i) acc[i] = pressure_acceleration_of(i, t_acc);
+#pragma omp taskloop grainsize(kResidualGrain)
+    for (Index i = 0; i < n; ++i) r[i] = scratch_->s[i] - pressure_operator_of(i, t);
+  }
+  if (!cl.factorised) return false;
   cl.rc = Eigen::VectorXd::Zero(cl.aggregates);
   for (Index i = 0; i < n; ++i)
     if (cl.aggregate[i] >= 0) cl.rc[cl.aggregate[i]] += r[i];

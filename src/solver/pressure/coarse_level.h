@@ -22,8 +22,10 @@ struct CoarseLevel {
   RowMatrix a_c;                       // assembled row by row
   Matrix symmetric;                    // -(A_c + A_c^T) / 2
   Eigen::SimplicialLDLT<Matrix> ldlt;  // its factors
+  bool factor_pending = false;         // built, not yet factorised (the solve's first correction does it)
   bool factorised = false;
-  Eigen::VectorXd rc, ec;  // restricted residual, coarse correction
+  std::vector<double> residual;  // s - A x of the fluid rows at a correction
+  Eigen::VectorXd rc, ec;        // restricted residual, coarse correction
   // Aggregates are cells: each one's cell, and the cells' aggregates (-1: none) on a grid
   // of nx columns.
   std::vector<std::int32_t> cell_x, cell_y;
