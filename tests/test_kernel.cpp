@@ -14,7 +14,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // Midpoint rule over the support square [-2h, 2h]^2 with n x n cells.
-double integrate_W(const CubicSpline2D& k, int n) {
+double integrate_W(const Kernel2D& k, int n) {
   const double h = k.h(), L = 4.0 * h, d = L / n;
   double sum = 0.0;
   for (int a = 0; a < n; ++a) {
@@ -30,7 +30,7 @@ double integrate_W(const CubicSpline2D& k, int n) {
 TEST(Kernel, IntegratesToOne) {
   for (double h : {1.0, 0.02, 3.5}) {
     SCOPED_TRACE(h);
-    const CubicSpline2D k(h);
+    const Kernel2D k(h);
     // The spline is C2 with compact support, so the midpoint rule converges as 1/n^2;
     // at n = 1000 the quadrature error is about 1e-6, well below the 1e-4 asked for.
     // The thesis' "+4(1-q)^3" variant integrates to 1.67 and fails.
@@ -41,7 +41,7 @@ TEST(Kernel, IntegratesToOne) {
 TEST(Kernel, IntegratesToOneRadially) {
   // Independent check: 2 pi int_0^2h W(r) r dr with Simpson's rule (smooth integrand).
   const double h = 0.05;
-  const CubicSpline2D k(h);
+  const Kernel2D k(h);
   const int n = 20000;  // even
   const double dr = 2.0 * h / n;
   double s = 0.0;
@@ -57,7 +57,7 @@ TEST(Kernel, IntegratesToOneRadially) {
 
 TEST(Kernel, ValueAtZero) {
   for (double h : {1.0, 0.01, 0.037}) {
-    const CubicSpline2D k(h);
+    const Kernel2D k(h);
     // 4 alpha = 20 / (14 pi h^2) = 0.4547284088 / h^2; 1e-6 relative checks the 6
     // digits of the literal.
     EXPECT_NEAR(k.W(0.0) * h * h, 0.454728, 1e-6);
@@ -68,7 +68,7 @@ TEST(Kernel, ValueAtZero) {
 
 TEST(Kernel, NonNegativeAndCompactSupport) {
   const double h = 0.02;
-  const CubicSpline2D k(h);
+  const Kernel2D k(h);
   EXPECT_DOUBLE_EQ(k.support(), 2.0 * h);
   for (int i = 0; i <= 100000; ++i) {
     const double r = 3.0 * h * i / 100000.0;
@@ -90,7 +90,7 @@ TEST(Kernel, NonNegativeAndCompactSupport) {
 
 TEST(Kernel, ContinuousAtKnots) {
   const double h = 0.03;
-  const CubicSpline2D k(h);
+  const Kernel2D k(h);
   const double alpha = 5.0 / (14.0 * kPi * h * h);
   // Exact knot values: W(h) = alpha (2-1)^3, W(2h) = 0.
   EXPECT_NEAR(k.W(h), alpha, 1e-12 * alpha);
@@ -110,7 +110,7 @@ TEST(Kernel, ContinuousAtKnots) {
 
 TEST(Kernel, GradientMatchesFiniteDifferences) {
   const double h = 0.02;
-  const CubicSpline2D k(h);
+  const Kernel2D k(h);
   std::mt19937_64 rng(12345);
   std::uniform_real_distribution<double> u(-2.1 * h, 2.1 * h);
   const double d = 1e-6 * h;
@@ -137,7 +137,7 @@ TEST(Kernel, GradientMatchesFiniteDifferences) {
 
 TEST(Kernel, GradientAntisymmetricAndZeroAtOrigin) {
   const double h = 0.05;
-  const CubicSpline2D k(h);
+  const Kernel2D k(h);
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-2.0 * h, 2.0 * h);
   for (int n = 0; n < 10000; ++n) {
@@ -157,7 +157,7 @@ TEST(Kernel, EvalMatchesSeparateFunctions) {
   // ((9q - 12) instead of (-3a^2 + 12b^2) / q): equal up to round-off, 1e-12 of the
   // values' scale (W(0) = 4 alpha, |dW/dr / r| <= 12 alpha / h^2).
   const double h = 0.02;
-  const CubicSpline2D k(h);
+  const Kernel2D k(h);
   const double alpha = 5.0 / (14.0 * kPi * h * h);
   for (int i = 1; i <= 30000; ++i) {
     const double r = 2.5 * h * i / 30000.0;
@@ -180,7 +180,7 @@ TEST(Kernel, LatticeGradientSumVanishes) {
   // Sum of grad W(x_i - x_j) over a perfect lattice around a particle at an arbitrary
   // offset (the lattice coordinates carry round-off, so the symmetry is not exact).
   for (double h : {0.02, 0.05}) {
-    const CubicSpline2D k(h);
+    const Kernel2D k(h);
     const Vec2 xi(0.37 + 0.5 * h, -1.2 + 0.5 * h);
     Vec2 sum = Vec2::Zero();
     double mag = 0.0;
@@ -197,17 +197,64 @@ TEST(Kernel, LatticeGradientSumVanishes) {
   }
 }
 
+// Wendland's C2 (solver.kernel = "wendland_c2"): normalised, its gradient the derivative of
+// its value, eval the same as the separate functions to the bit (the neighbour pass and
+// the boundary volumes must agree), smooth to zero at the support.
+TEST(Kernel, WendlandC2IsNormalisedAndConsistent) {
+  for (double h : {0.02, 0.013}) {
+    SCOPED_TRACE(h);
+    const Kernel2D k(h, KernelKind::WendlandC2);
+    EXPECT_EQ(k.support(), 2.0 * h);
+    // 2 pi int_0^2h W r dr by Simpson (a polynomial of degree 6 in r: exact to round-off).
+    const int n = 2000;
+    const double dr = 2.0 * h / n;
+    double s = 0.0;
+    for (int i = 0; i <= n; ++i) s += ((i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0)) * k.W(i * dr) * i * dr;
+    EXPECT_NEAR(2.0 * kPi * s * dr / 3.0, 1.0, 1e-10);
+    // W(0) = 7 / (4 pi h^2); zero value and slope at the support.
+    EXPECT_NEAR(k.W(0.0), 7.0 / (4.0 * kPi * h * h), 1e-12 / (h * h));
+    EXPECT_NEAR(k.W(2.0 * h), 0.0, 1e-12 * k.W(0.0));  // q = 2h (1/h) may round below 2
+    EXPECT_EQ(k.W(2.0 * h * (1 + 1e-12)), 0.0);
+    EXPECT_NEAR(k.dWdr_over_r(2.0 * h * (1 - 1e-9)), 0.0, 1e-20 / (h * h * h * h));
+    std::mt19937_64 rng(99);
+    std::uniform_real_distribution<double> u(-2.0 * h, 2.0 * h);
+    const double d = 1e-6 * h;
+    for (int m = 0; m < 5000; ++m) {
+      const Vec2 r(u(rng), u(rng));
+      const double q = r.norm() / h;
+      if (q < 0.01 || q > 1.99) continue;
+      const Vec2 g = k.gradW(r);
+      const Vec2 fd((k.W(r + Vec2(d, 0)) - k.W(r - Vec2(d, 0))) / (2 * d),
+                    (k.W(r + Vec2(0, d)) - k.W(r - Vec2(0, d))) / (2 * d));
+      ASSERT_LE((g - fd).norm(), 1e-5 * g.norm()) << "q = " << q;
+      double w = -1.0, dw = -1.0;
+      k.eval(r.norm(), w, dw);
+      ASSERT_EQ(w, k.W(r.norm()));
+      ASSERT_EQ(dw, k.dWdr_over_r(r.norm()));
+    }
+  }
+  // Wider supports put more lattice points in reach: the sum covers them all.
+  const double spacing = 0.01;
+  for (double support : {2.0, 2.5, 3.0}) {
+    const Kernel2D k(0.5 * support * spacing, KernelKind::WendlandC2);
+    double direct = 0.0;
+    for (int i = -4; i <= 4; ++i)
+      for (int j = -4; j <= 4; ++j) direct += k.W(spacing * std::sqrt(double(i * i + j * j)));
+    EXPECT_NEAR(lattice_kernel_sum(k, spacing), direct, 1e-12 * direct) << "support " << support;
+  }
+}
+
 TEST(Kernel, LatticeKernelSum) {
   for (double h : {1.0, 0.02, 0.0039}) {
     SCOPED_TRACE(h);
-    const CubicSpline2D k(h);
+    const Kernel2D k(h);
     // Independent closed form: the self term 4 alpha, four neighbours at h (alpha each),
     // four diagonal neighbours at sqrt(2) h (alpha (2 - sqrt 2)^3); the rest is >= 2h.
     const double alpha = 5.0 / (14.0 * kPi * h * h);
     const double expected = alpha * (4.0 + 4.0 + 4.0 * std::pow(2.0 - std::sqrt(2.0), 3));
-    EXPECT_NEAR(lattice_kernel_sum(k), expected, 1e-12 * expected);
+    EXPECT_NEAR(lattice_kernel_sum(k, h), expected, 1e-12 * expected);
     // The documented value 1.000862 / h^2 (rounded to 7 digits, hence 1e-6).
-    EXPECT_NEAR(lattice_kernel_sum(k) * h * h, 1.000862, 1e-6);
+    EXPECT_NEAR(lattice_kernel_sum(k, h) * h * h, 1.000862, 1e-6);
   }
 }
 

@@ -42,7 +42,7 @@ Points clustered_points(int n, double h, std::uint64_t seed) {
 
 // Lists of the grid search, each particle's neighbours sorted by index (the grid's own
 // order is bucket order; the reference is sorted).
-NeighborLists grid_search(const Points& query, const Points& points, const CubicSpline2D& k, bool exclude_self,
+NeighborLists grid_search(const Points& query, const Points& points, const Kernel2D& k, bool exclude_self,
                           PairCache cache = {}) {
   SpatialHashGrid grid;
   grid.build(points, k.support());
@@ -53,7 +53,7 @@ NeighborLists grid_search(const Points& query, const Points& points, const Cubic
 
 // Compares grid and brute-force neighbour sets of every query point.
 void expect_same_sets(const Points& query, const Points& points, double h, bool exclude_self) {
-  const CubicSpline2D k(h);
+  const Kernel2D k(h);
   const NeighborLists g = grid_search(query, points, k, exclude_self);
   NeighborLists b;
   find_neighbors_brute_force(query, points, k.support(), exclude_self, b);
@@ -147,7 +147,7 @@ TEST(Neighbors, GridEqualsBruteForceCoincident) {
   expect_same_sets_both(p, h);
   // All at one point: each sees every other one.
   const Points same(50, Vec2(0.123, -4.56));
-  const CubicSpline2D k(h);
+  const Kernel2D k(h);
   const NeighborLists g = grid_search(same, same, k, true);
   for (Index i = 0; i < 50; ++i) EXPECT_EQ(g.count(i), 49);
   const NeighborLists g2 = grid_search(same, same, k, false);
@@ -159,7 +159,7 @@ TEST(Neighbors, ExactSupportDistanceIsExcluded) {
   // exactly 2h.
   const double h = 2.5;
   const Points p = {{0, 0}, {5, 0}, {0, -5}, {3, 4}, {std::nextafter(5.0, 0.0), 30.0}, {0, 30.0}, {-5, 30.0}};
-  const CubicSpline2D k(h);
+  const Kernel2D k(h);
   const NeighborLists g = grid_search(p, p, k, true);
   auto set_of = [&](Index i) {
     std::set<Index> s(g.j.begin() + g.offset[i], g.j.begin() + g.offset[i + 1]);
@@ -230,7 +230,7 @@ TEST(Neighbors, PairJustInsideSupportAcrossCellEdges) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(::testing::Message() << "h = " << c.h << ", x0 = " << c.x0 << ", x1 = " << c.x1);
-    const CubicSpline2D k(c.h);
+    const Kernel2D k(c.h);
     const Points p = {{c.x0, 0.5}, {c.x1, 0.5}};
     ASSERT_LT((p[1] - p[0]).squaredNorm(), k.support() * k.support());  // a neighbour by definition
     const NeighborLists g = grid_search(p, p, k, true);
@@ -241,7 +241,7 @@ TEST(Neighbors, PairJustInsideSupportAcrossCellEdges) {
 
 TEST(Neighbors, EmptyAndSinglePoint) {
   const double h = 0.02;
-  const CubicSpline2D k(h);
+  const Kernel2D k(h);
   const Points none;
   NeighborLists g = grid_search(none, none, k, true, {true, true});
   ASSERT_EQ(g.offset.size(), 1u);
@@ -290,7 +290,7 @@ TEST(Neighbors, QuerySetDifferentFromPoints) {
 // the same order, for queries inside the box, at its edges and outside it.
 TEST(Neighbors, ReachableCellsLeaveTheListsUnchanged) {
   const double h = 0.02;
-  const CubicSpline2D k(h);
+  const Kernel2D k(h);
   // A box outline of two layers (enough points that the two strays fall outside the
   // 0.1 % quantiles: they sit in the outlier cell).
   Points walls;
@@ -324,7 +324,7 @@ TEST(Neighbors, ReachableCellsLeaveTheListsUnchanged) {
 
 TEST(Neighbors, PairCacheMatchesKernel) {
   const double h = 0.02;
-  const CubicSpline2D k(h);
+  const Kernel2D k(h);
   const Points p = uniform_points(2000, {0, 0}, {0.6, 0.6}, 9);
   const Points q = uniform_points(500, {0.1, 0.1}, {0.5, 0.5}, 10);
   for (bool self : {true, false}) {
@@ -414,7 +414,7 @@ TEST(Neighbors, SpatialOrderCellsContiguousAndStable) {
 
 TEST(Neighbors, TransposeNeighbors) {
   const double h = 0.02;
-  const CubicSpline2D k(h);
+  const Kernel2D k(h);
   const Points fluid = uniform_points(1500, {0, 0}, {0.5, 0.5}, 16);
   Points boundary;
   for (int a = 0; a <= 60; ++a) {
@@ -453,7 +453,7 @@ TEST(Neighbors, TransposeNeighbors) {
 
 TEST(Neighbors, SameResultForOneAndTwoThreads) {
   const double h = 0.02;
-  const CubicSpline2D k(h);
+  const Kernel2D k(h);
   const Points p = clustered_points(4000, h, 17);
   NeighborLists r1, r2;
   {

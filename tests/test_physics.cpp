@@ -59,7 +59,7 @@ TEST(Physics, RestDensityOnFilledLattice) {
     if (std::abs(f.x[i].x() - 0.11) < 1e-9) {
       EXPECT_LT(f.rho[i], 0.99 * rho0);
     }
-  EXPECT_NEAR(sim.fluid_mass() * lattice_kernel_sum(sim.kernel()), rho0, 1e-9 * rho0);
+  EXPECT_NEAR(sim.fluid_mass() * lattice_kernel_sum(sim.kernel(), h), rho0, 1e-9 * rho0);
 }
 
 // --- Akinci boundary volume -------------------------------------------------------------

@@ -179,7 +179,7 @@ TEST(SceneErrors, BadInputsNameFilePathAndAllowed) {
       {"unknown nested key",
        scene_with(R"("solver": {"tolernce": 0.05},)"),
        {"scenes/x.json:1:25: /solver/tolernce: unknown key; allowed keys: type, rest_density, gravity, viscosity, "
-        "artificial_viscosity, sound_speed, gradient_correction, tolerance,"}},
+        "artificial_viscosity, sound_speed, gradient_correction, kernel, support, tolerance,"}},
       {"unknown boundary key",
        scene_with(R"("boundaries": [{"shape": "circle", "center": [0, 0], "radius": 1, "lid": true}],)"),
        {"/boundaries/0/lid: unknown key; allowed keys: shape, name, center, radius, spacing, fluid_side, layers, "

@@ -43,6 +43,9 @@ SolverSettings read_solver(Reader& r, const Context& ctx) {
   s.artificial_viscosity = r.number("artificial_viscosity", s.artificial_viscosity, Range::at_least(0, "(alpha)"));
   s.sound_speed = r.number("sound_speed", s.sound_speed, Range::at_least(0, "[m/s]"));
   s.gradient_correction = r.boolean("gradient_correction", s.gradient_correction);
+  s.kernel = r.enumeration("kernel", s.kernel,
+                           {{"cubic_spline", KernelKind::CubicSpline}, {"wendland_c2", KernelKind::WendlandC2}});
+  s.support = r.number("support", default_support(s.kernel), Range::closed(1.5, 4, "[particle spacings]"));
   s.tolerance_percent = r.number("tolerance", s.tolerance_percent, Range::positive("(percent)"));
   s.omega = r.number("omega", s.omega, Range::open_closed(0, 1));
   s.min_iterations = r.integer("min_iterations", s.min_iterations, 1, 10000);
@@ -78,6 +81,11 @@ SolverSettings read_solver(Reader& r, const Context& ctx) {
     ctx.fail(r.at("pressure_solver"),
              "\"multilevel\" needs boundary_pressure \"solved\", \"mirroring\" or \"zero\", not \"extrapolation\": "
              "its coarse operator has no term for Eq. 25's extrapolated wall pressure");
+  if (s.type == SolverType::IISPH && s.pressure_solver == PressureSolver::Multilevel && s.multilevel_cell < s.support)
+    ctx.fail(r.at("multilevel_cell"), "multilevel_cell " + num(s.multilevel_cell) +
+                                          " is smaller than the kernel's support " + num(s.support) +
+                                          " [particle spacings]; the coarse operator couples cells at most two apart, "
+                                          "which needs multilevel_cell >= support");
   r.finish();
   return s;
 }

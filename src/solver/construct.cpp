@@ -26,14 +26,16 @@ double incompressible_sound_speed(const SimulationSetup& setup) {
 
 }  // namespace
 
-// sum_j W(x_ij) over a square lattice of spacing h (self included): 1.000862 / h^2 for
-// the cubic spline. The fluid mass is rho0 / this sum, so that a filled lattice is at
-// rest density exactly; with m = rho0 h^2 every particle of the initial block would be
-// 0.086% compressed and IISPH would push the whole block apart in its first step.
-double lattice_kernel_sum(const CubicSpline2D& kernel) {
+// sum_j W(x_ij) over a square lattice of the given spacing (self included): 1.000862 /
+// spacing^2 for the cubic spline on 2 spacings. The fluid mass is rho0 / this sum, so that
+// a filled lattice is at rest density exactly; with m = rho0 h^2 every particle of the
+// initial block would be 0.086% compressed and IISPH would push the whole block apart in
+// its first step.
+double lattice_kernel_sum(const Kernel2D& kernel, double spacing) {
+  const int reach = static_cast<int>(std::ceil(kernel.support() / spacing));
   double sum = 0.0;
-  for (int i = -2; i <= 2; ++i)
-    for (int j = -2; j <= 2; ++j) sum += kernel.W(kernel.h() * std::sqrt(double(i * i + j * j)));
+  for (int i = -reach; i <= reach; ++i)
+    for (int j = -reach; j <= reach; ++j) sum += kernel.W(spacing * std::sqrt(double(i * i + j * j)));
   return sum;
 }
 
@@ -44,8 +46,8 @@ Simulation& Simulation::operator=(Simulation&&) noexcept = default;
 Simulation::Simulation(const SimulationSetup& setup)
     : setup_(setup),
       settings_(setup.solver),
-      kernel_(setup.spacing),
-      mass_(setup.solver.rest_density / lattice_kernel_sum(kernel_)),
+      kernel_(0.5 * setup.solver.support * setup.spacing, setup.solver.kernel),
+      mass_(setup.solver.rest_density / lattice_kernel_sum(kernel_, setup.spacing)),
       scratch_(std::make_unique<SolverScratch>()) {
   SLUICE_ASSERT(setup.spacing > 0, "the setup's spacing is positive (the scene checks it)");
   SLUICE_ASSERT(setup.boundary_object.empty() || setup.boundary_object.size() == setup.boundary_x.size(),

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/types.h"
+#include "sph/kernel.h"
 
 namespace sluice {
 
@@ -35,6 +36,9 @@ enum class PressureSolver {
 };
 
 const char* to_string(SolverType t);
+const char* to_string(KernelKind k);
+// The support radius a kernel gets when the scene does not set one [particle spacings].
+double default_support(KernelKind k);
 const char* to_string(BoundaryPressure b);
 const char* to_string(PressureInit p);
 const char* to_string(PressureSolver p);
@@ -54,6 +58,10 @@ struct SolverSettings {
   // so that the SPH gradient of a linear field is exact on average over directions
   // (a scalar, pair-symmetric kernel gradient correction after Bonet & Lok 1999).
   bool gradient_correction = true;
+  // The SPH kernel (sph/kernel.h) and its support radius in particle spacings (h = support
+  // spacing / 2): the thesis' cubic spline on 2 spacings, or Wendland's C2.
+  KernelKind kernel = KernelKind::CubicSpline;
+  double support = 2.0;  // default_support(kernel) unless the scene sets it
   // IISPH (chapter 3)
   double tolerance_percent = 0.1;  // average predicted compression error (Eq. 23) [%], > 0
   double omega = 0.5;              // relaxation of Eq. 21, in (0, 1]

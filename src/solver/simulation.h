@@ -29,7 +29,7 @@ struct SolverScratch;        // per-step arrays of the pressure solvers (solver/
 class PressureSolverMethod;  // an iteration scheme of the PPE (solver/pressure/pressure_solver.h)
 struct CoarseLevel;          // the multilevel scheme's coarse level (solver/pressure/multilevel.h)
 
-double lattice_kernel_sum(const CubicSpline2D& kernel);
+double lattice_kernel_sum(const Kernel2D& kernel, double spacing);
 
 // Everything a simulation carries from one step to the next, in its own order (fluid
 // arrays as last sorted in space, boundary samples in their fixed spatial order), so
@@ -82,7 +82,7 @@ class Simulation {
   const SimulationSetup& setup() const { return setup_; }
   const FluidParticles& fluid() const { return fluid_; }
   const BoundaryParticles& boundary() const { return boundary_; }
-  const CubicSpline2D& kernel() const { return kernel_; }
+  const Kernel2D& kernel() const { return kernel_; }
   double fluid_mass() const { return mass_; }
   // Kinetic plus potential energy of the fluid now [J/m] (StepStats::mechanical_energy).
   double mechanical_energy() const;
@@ -171,7 +171,7 @@ class Simulation {
 
   SimulationSetup setup_;
   SolverSettings settings_;
-  CubicSpline2D kernel_;
+  Kernel2D kernel_;
   double mass_;             // fluid particle mass rho0 h^2 [kg/m]
   double sound_speed_ = 0;  // c of the artificial viscosity [m/s]
   double wcsph_speed_ = 0;  // sqrt(k / rho0), WCSPH's acoustic time step [m/s]

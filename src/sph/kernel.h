@@ -1,21 +1,36 @@
 #pragma once
-// Cubic spline kernel in 2D, thesis section 2.2.2:
+// SPH kernels in 2D with support radius 2h (q = |r| / h), chosen by solver.kernel.
+//
+// Cubic spline, thesis section 2.2.2 (the reference):
 //   W(r, h) = alpha_2 * { (2-q)^3 - 4(1-q)^3  for 0 <= q < 1
 //                        (2-q)^3             for 1 <= q < 2
-//                        0                   for q >= 2 },   q = |r| / h,
-//   alpha_2 = 5 / (14 pi h^2), support radius 2h.
+//                        0                   for q >= 2 },
+//   alpha_2 = 5 / (14 pi h^2).
 // (The thesis prints "+ 4(1-q)^3"; the standard spline that integrates to one and is
 // smooth at q = 1 has the minus sign, which the kernel test checks.)
+//
+// Wendland C2 (Wendland 1995; the thesis has none; Dehnen & Aly 2012 for its use in SPH:
+// no pairing instability, so a stretched lattice keeps its kernel sum at wider supports):
+//   W(r, h) = alpha_w (1 - q/2)^4 (1 + 2q)  for q < 2,  alpha_w = 7 / (4 pi h^2),
+//   dW/dr / r = -5 alpha_w (1 - q/2)^3 / h^2 (no division, finite at r = 0).
 #include <cmath>
 
 #include "core/types.h"
 
 namespace sluice {
 
-class CubicSpline2D {
- public:
-  explicit CubicSpline2D(double h) : h_(h), inv_h_(1.0 / h), alpha_(5.0 / (14.0 * M_PI * h * h)), support_(2.0 * h) {}
+enum class KernelKind { CubicSpline, WendlandC2 };
 
+class Kernel2D {
+ public:
+  explicit Kernel2D(double h, KernelKind kind = KernelKind::CubicSpline)
+      : kind_(kind),
+        h_(h),
+        inv_h_(1.0 / h),
+        alpha_(kind == KernelKind::CubicSpline ? 5.0 / (14.0 * M_PI * h * h) : 7.0 / (4.0 * M_PI * h * h)),
+        support_(2.0 * h) {}
+
+  KernelKind kind() const { return kind_; }
   double h() const { return h_; }
   double support() const { return support_; }
 
@@ -23,6 +38,10 @@ class CubicSpline2D {
   double W(double r) const {
     const double q = r * inv_h_;
     if (q >= 2.0) return 0.0;
+    if (kind_ == KernelKind::WendlandC2) {
+      const double c = 1.0 - 0.5 * q, c3 = c * c * c;
+      return alpha_ * c3 * c * (1.0 + 2.0 * q);  // as in eval, to the bit
+    }
     const double a = 2.0 - q;
     double w = a * a * a;
     if (q < 1.0) {
@@ -37,6 +56,10 @@ class CubicSpline2D {
   double dWdr_over_r(double r) const {
     const double q = r * inv_h_;
     if (q >= 2.0 || r <= 0.0) return 0.0;
+    if (kind_ == KernelKind::WendlandC2) {
+      const double c = 1.0 - 0.5 * q, c3 = c * c * c;
+      return -5.0 * alpha_ * inv_h_ * inv_h_ * c3;  // as in eval, to the bit
+    }
     const double a = 2.0 - q;
     double d = -3.0 * a * a;
     if (q < 1.0) {
@@ -57,6 +80,12 @@ class CubicSpline2D {
       w = dw_over_r = 0.0;
       return;
     }
+    if (kind_ == KernelKind::WendlandC2) {  // one branch for the whole run: predicted
+      const double c = 1.0 - 0.5 * q, c3 = c * c * c;
+      w = alpha_ * c3 * c * (1.0 + 2.0 * q);
+      dw_over_r = -5.0 * alpha_ * inv_h_ * inv_h_ * c3;
+      return;
+    }
     const bool near = q < 1.0;
     const double a = 2.0 - q, b = 1.0 - q;
     const double w_near = alpha_ * (a * a * a - 4.0 * b * b * b);
@@ -69,6 +98,7 @@ class CubicSpline2D {
   }
 
  private:
+  KernelKind kind_;
   double h_, inv_h_, alpha_, support_;
 };
 

@@ -129,7 +129,7 @@ void SpatialHashGrid::mark_reachable_cells() {
 // One query per particle: each thread lists the pairs of a contiguous chunk of queries
 // into its own buffer; the chunks are then copied into place after a prefix sum. The
 // result does not depend on the number of threads.
-void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid, const CubicSpline2D& kernel,
+void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid, const Kernel2D& kernel,
                     bool exclude_self, PairCache cache, NeighborLists& out) {
   const Index n = static_cast<Index>(query.size());
   const double radius = kernel.support();
@@ -221,7 +221,7 @@ std::vector<Index> spatial_order(const std::vector<Vec2>& points, double cell_si
 
 namespace sluice {
 
-void fill_pair_cache(const std::vector<Vec2>& query, const std::vector<Vec2>& points, const CubicSpline2D& kernel,
+void fill_pair_cache(const std::vector<Vec2>& query, const std::vector<Vec2>& points, const Kernel2D& kernel,
                      PairCache cache, NeighborLists& lists) {
   const Index n = static_cast<Index>(query.size());
   resize_pairs(lists.grad, cache.grad ? lists.j.size() : 0);

@@ -162,11 +162,11 @@ struct PairCache {
   bool w = false;
 };
 
-class CubicSpline2D;
+class Kernel2D;
 
 // Lists, for every query point i, the grid points within the kernel support.
 // With exclude_self, the point with the same index is skipped (fluid against itself).
-void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid, const CubicSpline2D& kernel,
+void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid, const Kernel2D& kernel,
                     bool exclude_self, PairCache cache, NeighborLists& out);
 
 // O(n m) reference search, same output format (neighbours sorted by index).
@@ -182,7 +182,7 @@ std::vector<Index> spatial_order(const std::vector<Vec2>& points, double cell_si
 namespace sluice {
 // Fills lists.grad / lists.w of existing lists from the positions (used after a
 // brute-force search, and by tests).
-void fill_pair_cache(const std::vector<Vec2>& query, const std::vector<Vec2>& points, const CubicSpline2D& kernel,
+void fill_pair_cache(const std::vector<Vec2>& query, const std::vector<Vec2>& points, const Kernel2D& kernel,
                      PairCache cache, NeighborLists& lists);
 
 // lists of boundary -> fluid pairs from fluid -> boundary pairs, keeping W and grad W.
