@@ -470,6 +470,31 @@ TEST(SceneSettings, PressureSolverChoices) {
       parse_scene(text, kFile, {"solver.pressure_solver=multilevel", "solver.boundary_pressure=mirroring"}));
 }
 
+// solver.kernel and solver.support: defaults, values, errors naming the JSON path, and
+// the multilevel cells no smaller than the support.
+TEST(SceneSettings, KernelAndSupport) {
+  const std::string text = scene_with("");
+  const Scene d = parse_scene(text, kFile);
+  EXPECT_EQ(d.solver.kernel, KernelKind::CubicSpline);
+  EXPECT_EQ(d.solver.support, 2.0);
+  EXPECT_EQ(d.resolved["solver"]["kernel"], "cubic_spline");
+  EXPECT_EQ(d.resolved["solver"]["support"], 2.0);
+  const Scene w = parse_scene(text, kFile, {"solver.kernel=wendland_c2", "solver.support=3"});
+  EXPECT_EQ(w.solver.kernel, KernelKind::WendlandC2);
+  EXPECT_EQ(w.solver.support, 3.0);
+  const std::string bad = error_of(text, {"solver.kernel=gaussian"});
+  EXPECT_NE(bad.find("/solver/kernel"), std::string::npos) << bad;
+  EXPECT_NE(bad.find("wendland_c2"), std::string::npos) << bad;
+  const std::string range = error_of(text, {"solver.support=5"});
+  EXPECT_NE(range.find("/solver/support: value 5 is out of range; must be in [1.5, 4]"), std::string::npos) << range;
+  const std::string cell =
+      error_of(text, {"solver.pressure_solver=multilevel", "solver.multilevel_cell=2.5", "solver.support=3"});
+  EXPECT_NE(cell.find("/solver/multilevel_cell: multilevel_cell 2.5 is smaller than the kernel's support 3"),
+            std::string::npos)
+      << cell;
+  EXPECT_NO_THROW(parse_scene(text, kFile, {"solver.pressure_solver=multilevel", "solver.support=3"}));
+}
+
 // A fixed WCSPH step above 0.4 h / c is refused, naming the limit and the stiffness.
 TEST(SceneSettings, WcsphStepAboveTheAcousticLimitIsRefused) {
   // k = 1e6: c = 31.62 m/s, limit 0.4 * 0.1 / c = 1.265e-3 s.
