@@ -45,7 +45,7 @@ SolverSettings read_solver(Reader& r, const Context& ctx) {
   s.gradient_correction = r.boolean("gradient_correction", s.gradient_correction);
   s.kernel = r.enumeration("kernel", s.kernel,
                            {{"cubic_spline", KernelKind::CubicSpline}, {"wendland_c2", KernelKind::WendlandC2}});
-  s.support = r.number("support", default_support(s.kernel), Range::closed(1.5, 4, "[particle spacings]"));
+  s.support = r.number("support", s.support, Range::closed(1.5, 4, "[particle spacings]"));
   s.tolerance_percent = r.number("tolerance", s.tolerance_percent, Range::positive("(percent)"));
   s.omega = r.number("omega", s.omega, Range::open_closed(0, 1));
   s.min_iterations = r.integer("min_iterations", s.min_iterations, 1, 10000);

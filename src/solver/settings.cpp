@@ -18,11 +18,6 @@ const char* to_string(BoundaryPressure b) {
   return "?";
 }
 
-const char* to_string(KernelKind k) { return k == KernelKind::CubicSpline ? "cubic_spline" : "wendland_c2"; }
-
-// The cubic spline: the thesis' 2 spacings. Wendland C2: 2.0.
-double default_support(KernelKind k) { return k == KernelKind::CubicSpline ? 2.0 : 2.0; }
-
 const char* to_string(PressureInit p) { return p == PressureInit::Thesis ? "thesis" : "warm"; }
 
 const char* to_string(PressureSolver p) {

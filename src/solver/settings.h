@@ -36,9 +36,6 @@ enum class PressureSolver {
 };
 
 const char* to_string(SolverType t);
-const char* to_string(KernelKind k);
-// The support radius a kernel gets when the scene does not set one [particle spacings].
-double default_support(KernelKind k);
 const char* to_string(BoundaryPressure b);
 const char* to_string(PressureInit p);
 const char* to_string(PressureSolver p);
@@ -61,7 +58,9 @@ struct SolverSettings {
   // The SPH kernel (sph/kernel.h) and its support radius in particle spacings (h = support
   // spacing / 2): the thesis' cubic spline on 2 spacings, or Wendland's C2.
   KernelKind kernel = KernelKind::CubicSpline;
-  double support = 2.0;  // default_support(kernel) unless the scene sets it
+  // 2 for either kernel: wider supports hold the stretched drop but not yet the walls
+  // (docs/validation.md, "Kernels and support radius").
+  double support = 2.0;
   // IISPH (chapter 3)
   double tolerance_percent = 0.1;  // average predicted compression error (Eq. 23) [%], > 0
   double omega = 0.5;              // relaxation of Eq. 21, in (0, 1]

@@ -15,6 +15,7 @@ void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius, doub
   const size_t n = points.size();
   points_ = &points;
   reach_.clear();
+  const bool parallel = n >= static_cast<size_t>(kParallelMin);
   // Cells slightly larger than radius / kReach: x * inv_cell_ is rounded, and two points
   // closer than `radius` must never land kReach + 1 cells apart (e.g. 12.8 and 12.9 with
   // radius 0.1: 255.99999999999997 and 258 after scaling by 20).
@@ -37,9 +38,9 @@ void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius, doub
   if (n > 0) {
     // Minima and maxima are exact: the same box for any thread count.
     double minx = points[0].x(), maxx = minx, miny = points[0].y(), maxy = miny;
-#pragma omp parallel for reduction(min                         \
-                                   : minx, miny) reduction(max \
-                                                           : maxx, maxy) if (n >= static_cast <size_t>(kParallelMin))
+    // clang-format off
+#pragma omp parallel for reduction(min : minx, miny) reduction(max : maxx, maxy) if (parallel)
+    // clang-format on
     for (size_t i = 0; i < n; ++i) {
       minx = std::min(minx, points[i].x());
       maxx = std::max(maxx, points[i].x());
@@ -71,7 +72,7 @@ void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius, doub
   if (dense_) {
     cells = static_cast<std::uint32_t>(nx_ * ny_);
     size_t outliers = 0;
-#pragma omp parallel for reduction(+ : outliers) if (n >= static_cast <size_t>(kParallelMin))
+#pragma omp parallel for reduction(+ : outliers) if (parallel)
     for (size_t i = 0; i < n; ++i) {
       const std::int64_t cx = cell_coord(points[i].x()) - x0_, cy = cell_coord(points[i].y()) - y0_;
       const bool inside = cx >= 0 && cx < nx_ && cy >= 0 && cy < ny_;
@@ -87,7 +88,7 @@ void SpatialHashGrid::build(const std::vector<Vec2>& points, double radius, doub
   if (!dense_) {
     cells = std::bit_ceil(static_cast<std::uint32_t>(std::max<size_t>(2 * n, 64)));
     mask_ = cells - 1;
-#pragma omp parallel for if (n >= static_cast <size_t>(kParallelMin))
+#pragma omp parallel for if (parallel)
     for (size_t i = 0; i < n; ++i) key_[i] = bucket(cell_coord(points[i].x()), cell_coord(points[i].y()));
   }
   // Counting sort by cell: serial, O(n), deterministic.
