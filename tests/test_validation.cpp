@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <string>
 #include <vector>
@@ -180,6 +181,39 @@ TEST(ValidateCommand, DamBreak) {
   EXPECT_EQ(r.status, 0) << r.err;
   expect_verdict(dir, r, {"iisph   instant", "iisph   gate", "wcsph   instant", "wcsph   gate"},
                  {{"dam_break_points.csv", 4 * 15}});
+}
+
+// Three spacings, coarse to fine (IISPH, the instant release, h = 0.16, 0.08 and 0.04):
+// the observed order from the two differences, printed and in dam_break_convergence.csv,
+// the same numbers as the differences' CSV.
+TEST(ValidateCommand, DamBreakObservedOrder) {
+  test::CaseDir dir;
+  const test::Result r =
+      run_validate(dir, {"dam-break", "--solver", "iisph", "--scene",
+                         std::string(SLUICE_SOURCE_DIR) + "/scenes/validation/dam_break_martin_moyce.json", "--spacing",
+                         "0.16,0.08,0.04"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("observed order of convergence"), std::string::npos) << r.out;
+  const std::string csv = test::read_text(dir.work() / "renders/validation/dam_break_convergence.csv");
+  const std::string diffs = test::read_text(dir.work() / "renders/validation/dam_break_differences.csv");
+  double h1, h2, h3, d12, d23, ratio, order;
+  const std::size_t row = csv.find("\niisph,");
+  ASSERT_NE(row, std::string::npos) << csv;
+  ASSERT_EQ(
+      std::sscanf(csv.c_str() + row, "\niisph,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &h1, &h2, &h3, &d12, &d23, &ratio, &order),
+      7)
+      << csv;
+  EXPECT_EQ(h1, 0.16);
+  EXPECT_EQ(h2, 0.08);
+  EXPECT_EQ(h3, 0.04);
+  EXPECT_GT(d12, 0);
+  EXPECT_GT(d23, 0);
+  EXPECT_DOUBLE_EQ(ratio, d12 / d23);
+  EXPECT_NEAR(order, std::log2(ratio), 1e-12);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 2) << csv;  // header and one triple
+  // The differences' CSV holds the same two numbers.
+  EXPECT_NE(diffs.find("resolution,iisph_instant_h0.16,iisph_instant_h0.08,"), std::string::npos) << diffs;
+  EXPECT_NE(diffs.find("resolution,iisph_instant_h0.08,iisph_instant_h0.04,"), std::string::npos) << diffs;
 }
 
 // The shipped tank and the eight boundary cases at h = 0.02, settled 0.1 s, run 0.6 s

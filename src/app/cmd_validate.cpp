@@ -23,7 +23,9 @@ Command add_validate(CLI::App& app) {
   validatecmd->add_option("--case", val->only, "hydrostatic: only this case, e.g. iisph_mirroring");
   validatecmd
       ->add_option("--spacing", val->spacing,
-                   "dam-break, elliptical-drop: particle spacing h [m] (default: the scene's, 0.02 and 0.025)")
+                   "Particle spacing h [m]; dam-break: one or more, comma-separated, coarse to fine (default "
+                   "0.04,0.02,0.01); elliptical-drop: one (default: the scene's, 0.025)")
+      ->delimiter(',')
       ->check(positive_check());
   validatecmd->add_option("--max-rms", val->max_rms, "dam-break: bound on the RMS relative front error (default 0.20)")
       ->check(positive_check());

@@ -120,8 +120,10 @@ struct ValidateOptions {
   std::string output_dir = "renders/validation";
   std::string solver = "both";  // dam-break, elliptical-drop: iisph | wcsph | both
   std::string only;             // hydrostatic: run only this case
-  double spacing = 0;           // dam-break, elliptical-drop: > 0 overrides the scene's spacing
-  double max_rms = 0.20;        // dam-break: bound on the RMS relative front error (the tests' bound)
+  // dam-break: the spacings to run (empty: 0.04, 0.02, 0.01); elliptical-drop: at most one,
+  // overriding the scene's. Each > 0.
+  std::vector<double> spacing;
+  double max_rms = 0.20;  // dam-break: bound on the RMS relative front error (the tests' bound)
   int threads = 0;
   std::vector<std::string> set;
 };

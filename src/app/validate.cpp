@@ -67,6 +67,12 @@ std::string join_names(const std::vector<std::string>& names) {
   return out;
 }
 
+std::string join_numbers(const std::vector<double>& values) {
+  std::string out;
+  for (double v : values) out += (out.empty() ? "" : ",") + number_text(v);
+  return out;
+}
+
 std::vector<std::string> solvers_of(const ValidateOptions& o) {
   std::vector<std::string> solvers;
   if (o.solver != "wcsph") solvers.push_back("iisph");
@@ -242,6 +248,40 @@ double front_difference(const analysis::DamBreakResult& a, const analysis::DamBr
   return za.empty() ? std::nan("") : std::sqrt(sum / static_cast<double>(za.size()));
 }
 
+// The observed order of convergence from three successive resolutions h1 > h2 > h3: with
+// d12 and d23 the RMS differences between their fronts, d12 / d23 = (h1 / h2)^p for a
+// front that converges with order p (Roache 1998, Verification and Validation in
+// Computational Science and Engineering). Printed and returned as CSV rows, one per triple;
+// `levels` holds each solver's (h, instant-release front), coarse to fine.
+using ResolutionLevels =
+    std::vector<std::pair<std::string, std::vector<std::pair<double, const analysis::DamBreakResult*>>>>;
+std::string observed_order(const ResolutionLevels& levels) {
+  std::string csv = "solver,h_coarse,h_middle,h_fine,difference_coarse,difference_fine,ratio,observed_order\n";
+  bool header = false;
+  for (const auto& [solver, runs] : levels) {
+    for (size_t k = 0; k + 2 < runs.size(); ++k) {
+      const double h1 = runs[k].first, h2 = runs[k + 1].first, h3 = runs[k + 2].first;
+      const double d12 = front_difference(*runs[k].second, *runs[k + 1].second);
+      const double d23 = front_difference(*runs[k + 1].second, *runs[k + 2].second);
+      const double ratio = d12 / d23, order = std::log(ratio) / std::log(h1 / h2);
+      if (!header) {
+        std::printf(
+            "\nobserved order of convergence: the difference between successive fronts, each h against the next\n"
+            "  %-7s %-22s %10s %10s %7s %7s\n",
+            "solver", "h", "coarse_%", "fine_%", "ratio", "order");
+        header = true;
+      }
+      const std::string hs = number_text(h1) + " " + number_text(h2) + " " + number_text(h3);
+      std::printf("  %-7s %-22s %10.2f %10.2f %7.2f %7.2f\n", solver.c_str(), hs.c_str(), 100 * d12, 100 * d23, ratio,
+                  order);
+      csv += solver + "," + number_text(h1) + "," + number_text(h2) + "," + number_text(h3) + "," + number_text(d12) +
+             "," + number_text(d23) + "," + number_text(ratio) + "," + number_text(order) + "\n";
+    }
+  }
+  if (!header) std::printf("\nobserved order of convergence: needs three spacings or more (--spacing)\n");
+  return csv;
+}
+
 // The dam break against Martin & Moyce: each solver at h = 0.04, 0.02 and 0.01 (or
 // --spacing) with the instant release (the column starts as a lattice and falls at
 // t = 0), and at 0.02 with the gate release (scenes/validation/dam_break_gate.json: the
@@ -251,8 +291,10 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
   const std::string instant_file = o.scene.empty() ? "scenes/validation/dam_break_martin_moyce.json" : o.scene;
   const std::string gate_file = "scenes/validation/dam_break_gate.json";
   const std::vector<std::string> solvers = solvers_of(o);
-  const std::vector<double> spacings =
-      o.spacing > 0 ? std::vector<double>{o.spacing} : std::vector<double>{0.04, 0.02, 0.01};
+  const std::vector<double> spacings = o.spacing.empty() ? std::vector<double>{0.04, 0.02, 0.01} : o.spacing;
+  for (size_t k = 1; k < spacings.size(); ++k)
+    if (!(spacings[k] < spacings[k - 1]))
+      throw view::FlagError("--spacing", join_numbers(spacings), "the spacings must run from coarse to fine");
   struct Run {
     std::string solver, release, label;
     double h;
@@ -297,7 +339,7 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
               "rms_%", "wall_s", "result");
   for (const auto& solver : solvers) {
     for (double h : spacings) run_one(solver, "instant", instant_file, h);
-    if (o.scene.empty()) run_one(solver, "gate", gate_file, o.spacing > 0 ? o.spacing : 0.02);
+    if (o.scene.empty()) run_one(solver, "gate", gate_file, o.spacing.size() == 1 ? o.spacing.front() : 0.02);
   }
   // Convergence: each instant run against the next finer one of its solver; the solvers
   // against each other at the finest h.
@@ -320,10 +362,18 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
     if (g.release == "gate")
       for (const Run& i : runs)
         if (i.release == "instant" && i.solver == g.solver && i.h == g.h) report("gate vs instant release", g, i);
+  ResolutionLevels levels;
+  for (const auto& solver : solvers) {
+    levels.push_back({solver, {}});
+    for (const Run& r : runs)
+      if (r.solver == solver && r.release == "instant") levels.back().second.push_back({r.h, &r.r});
+  }
+  const std::string convergence = observed_order(levels);
 
   write_file_atomic((dir / "dam_break_front.csv").string(), series);
   write_file_atomic((dir / "dam_break_points.csv").string(), points);
   write_file_atomic((dir / "dam_break_differences.csv").string(), diffs);
+  write_file_atomic((dir / "dam_break_convergence.csv").string(), convergence);
   std::string exp = "T,Z\n";
   for (const auto& [T, Z] : analysis::martin_moyce_n2_a225()) exp += std::to_string(T) + "," + std::to_string(Z) + "\n";
   write_file_atomic((dir / "martin_moyce_1952.csv").string(), exp);
@@ -343,8 +393,9 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
   }
   gp << "\n";
   report_figure(analysis::run_gnuplot((dir / "dam_break_front.gp").string(), gp.str()), dir / "dam_break_front.png");
-  std::printf("wrote %s, %s, %s\n", (dir / "dam_break_front.csv").string().c_str(),
-              (dir / "dam_break_points.csv").string().c_str(), (dir / "dam_break_differences.csv").string().c_str());
+  std::printf("wrote %s, %s, %s, %s\n", (dir / "dam_break_front.csv").string().c_str(),
+              (dir / "dam_break_points.csv").string().c_str(), (dir / "dam_break_differences.csv").string().c_str(),
+              (dir / "dam_break_convergence.csv").string().c_str());
   return failed ? 1 : 0;
 }
 
@@ -378,6 +429,8 @@ int validate_elliptical_drop(const ValidateOptions& o, const fs::path& dir) {
   const std::string scene_file = o.scene.empty() ? "scenes/validation/elliptical_drop.json" : o.scene;
   const std::vector<std::string> solvers = solvers_of(o);
   const double A0 = analysis::kEllipticalDropA0, bound = analysis::kEllipticalDropBound;
+  if (o.spacing.size() > 1)
+    throw view::FlagError("--spacing", join_numbers(o.spacing), "elliptical-drop runs one spacing");
   std::printf(
       "elliptical drop %s: u = -A0 x, v = A0 y with A0 = %g 1/s; semi-axes from the second moments against "
       "Monaghan's (1994) ODE\n",
@@ -412,7 +465,7 @@ int validate_elliptical_drop(const ValidateOptions& o, const fs::path& dir) {
   });
   for (const auto& solver : solvers) {
     std::vector<std::string> base{"solver.type=" + solver};
-    if (o.spacing > 0) base.push_back(number_override("spacing", o.spacing));
+    if (!o.spacing.empty()) base.push_back(number_override("spacing", o.spacing.front()));
     std::vector<std::string> set = base;
     set.insert(set.end(), o.set.begin(), o.set.end());
     // The drop's motion is part of the scene, so that WCSPH's default stiffness sees it.
