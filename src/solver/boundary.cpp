@@ -30,7 +30,7 @@ inline double boundary_density(const NeighborLists& bf, Index b, double mass, do
 // computed from scratch now.
 void Simulation::compute_volumes(const SpatialHashGrid& grid, const std::vector<Index>& which,
                                  std::vector<double>& volume) const {
-  const double r = kernel_.support(), w0 = kernel_.W(0.0), gamma1 = settings_.gamma1;
+  const double r = volume_kernel_.support(), w0 = volume_kernel_.W(0.0), gamma1 = settings_.gamma1 * volume_scale_;
   const std::vector<Vec2>& x = grid.points();
   const Index n = static_cast<Index>(which.size());
 #pragma omp parallel if (n >= kParallelMin / 8)
@@ -43,7 +43,7 @@ void Simulation::compute_volumes(const SpatialHashGrid& grid, const std::vector<
       const size_t count = grid.gather_within(xb, r, b, near, 0);
       std::sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(count));
       double sum = w0;
-      for (size_t m = 0; m < count; ++m) sum += kernel_.W((xb - x[near[m]]).norm());
+      for (size_t m = 0; m < count; ++m) sum += volume_kernel_.W((xb - x[near[m]]).norm());
       volume[b] = gamma1 / sum;
     }
   }
@@ -88,7 +88,7 @@ void Simulation::move_boundaries(double dt) {
 // support now or at the last update. Static walls far from any moving part keep their
 // volumes.
 void Simulation::update_boundary_volumes() {
-  const double r = kernel_.support(), w0 = kernel_.W(0.0), gamma1 = settings_.gamma1;
+  const double r = volume_kernel_.support(), w0 = volume_kernel_.W(0.0), gamma1 = settings_.gamma1 * volume_scale_;
   const Index nm = static_cast<Index>(moving_.size());
   std::vector<std::uint8_t> near_now(near_moving_.size(), 0);
   // Moving samples: volume and, in the same gather, the static samples they reach.
@@ -105,7 +105,7 @@ void Simulation::update_boundary_volumes() {
       double sum = w0;
       for (size_t m = 0; m < count; ++m) {
         const Index j = near[m];
-        sum += kernel_.W((xb - boundary_.x[j]).norm());
+        sum += volume_kernel_.W((xb - boundary_.x[j]).norm());
         if (!boundary_.moving[j])  // every writer stores 1: the result is order-free
           std::atomic_ref<std::uint8_t>(near_now[j]).store(1, std::memory_order_relaxed);
       }
@@ -173,7 +173,7 @@ void Simulation::prepare_boundary_terms() {
 void Simulation::update_boundary_pressure() {
   const double rho0 = settings_.rest_density, inv_rho0_2 = 1.0 / (rho0 * rho0);
   if (settings_.boundary_pressure == BoundaryPressure::Solved && settings_.type == SolverType::WCSPH) {
-    const double k = settings_.stiffness, g1r = settings_.gamma1 * rho0;
+    const double k = settings_.stiffness, g1r = wall_share_ * rho0;
     parallel_for(boundary_.size(), [&](Index b) {
       const double p = bf_.offset[b] == bf_.offset[b + 1]
                            ? 0.0

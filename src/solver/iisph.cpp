@@ -76,7 +76,7 @@ double Simulation::extrapolation_coupling(Index i) const {
 Index Simulation::prepare_pressure_system(double dt) {
   const Index n = fluid_.size();
   const SolverSettings& s = settings_;
-  const double rho0 = s.rest_density, g2 = s.gamma2, g3 = s.gamma3, omega = s.omega;
+  const double rho0 = s.rest_density, g2 = s.gamma2, g3 = s.gamma3, omega = omega_;
   prepare_boundary_terms();
   scratch_->s.resize(n);
   scratch_->a_ii.resize(n);
@@ -173,7 +173,7 @@ void Simulation::iterate_pressure(double dt, Index active_samples, StepStats& st
 //   a_bb = d(Ap)_b / dp_b = -dt gamma3 (V_b m / rho0) sum_f |grad W_bf|^2.
 Index Simulation::prepare_solved_boundary(double dt) {
   const SolverSettings& s = settings_;
-  const double rho0 = s.rest_density, g1r = s.gamma1 * rho0, inv_rho0_2 = 1.0 / (rho0 * rho0);
+  const double rho0 = s.rest_density, g1r = wall_share_ * rho0, inv_rho0_2 = 1.0 / (rho0 * rho0);
   const bool thesis_init = s.pressure_init == PressureInit::Thesis;
   const double warm = pressure_method().warm_start_factor();
   const Index nb = boundary_.size();
@@ -201,7 +201,7 @@ Index Simulation::prepare_solved_boundary(double dt) {
     scratch_->bnd_s[b] = sb;
     scratch_->bnd_aii[b] = abb;
     double p0 = abb != 0.0 ? warm * boundary_.p[b] : 0.0;
-    if (thesis_init) p0 = abb != 0.0 ? std::max(s.omega * sb / abb, 0.0) : 0.0;
+    if (thesis_init) p0 = abb != 0.0 ? std::max(omega_ * sb / abb, 0.0) : 0.0;
     boundary_.p[b] = p0;
     scratch_->pb_over_rho2[b] = p0 * inv_rho0_2;
   });
@@ -246,7 +246,7 @@ Simulation::PressureTerms Simulation::pressure_terms(double dt) const {
   t.boundary_field =
       s.boundary_pressure == BoundaryPressure::Extrapolation || s.boundary_pressure == BoundaryPressure::Solved;
   t.gamma2 = s.gamma2;
-  t.omega = s.omega;
+  t.omega = omega_;
   t.dt = dt;
   t.err_scale = 100.0 * dt / s.rest_density;
   return t;

@@ -29,7 +29,8 @@ struct SolverScratch;        // per-step arrays of the pressure solvers (solver/
 class PressureSolverMethod;  // an iteration scheme of the PPE (solver/pressure/pressure_solver.h)
 struct CoarseLevel;          // the multilevel scheme's coarse level (solver/pressure/multilevel.h)
 
-double lattice_kernel_sum(const Kernel2D& kernel, double spacing);
+double lattice_kernel_sum(const Kernel2D& kernel, double spacing, int top_row = 1 << 20);
+double lattice_jacobi_bound(const Kernel2D& kernel, double spacing);
 
 // Everything a simulation carries from one step to the next, in its own order (fluid
 // arrays as last sorted in space, boundary samples in their fixed spatial order), so
@@ -172,7 +173,22 @@ class Simulation {
   SimulationSetup setup_;
   SolverSettings settings_;
   Kernel2D kernel_;
-  double mass_;             // fluid particle mass rho0 h^2 [kg/m]
+  // The boundary volumes' kernel (section 4.1): the thesis' cubic spline on min(support, 2)
+  // spacings, the calibration of gamma1, whatever the support of the fluid's kernel.
+  Kernel2D volume_kernel_;
+  double mass_;  // fluid particle mass rho0 / lattice_kernel_sum [kg/m]
+  // The wall's share of a wall sample's density (boundary_density): gamma1 on the volume
+  // kernel, scaled by the lattice's wall share on the fluid's kernel over that on the
+  // volume kernel (exactly gamma1 on the thesis' support).
+  double wall_share_;
+  // The fluid particle's volume m / rho0 on the fluid's kernel over that on the volume
+  // kernel: V_b = gamma1 volume_scale_ / sum_b' W_bb' (exactly 1 on the thesis' support).
+  double volume_scale_;
+  // The relaxation of Eq. 21 on this kernel: solver.omega times the lattice's largest
+  // eigenvalue of D^-1 A on the thesis' kernel over that on this one (lattice_jacobi_bound),
+  // so that a wider support keeps the thesis' margin to Jacobi's divergence (exactly
+  // solver.omega on the thesis' support).
+  double omega_;
   double sound_speed_ = 0;  // c of the artificial viscosity [m/s]
   double wcsph_speed_ = 0;  // sqrt(k / rho0), WCSPH's acoustic time step [m/s]
   long settle_steps_ = 0;   // steps taken by settle()
