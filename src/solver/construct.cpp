@@ -43,7 +43,7 @@ double lattice_kernel_sum(const Kernel2D& kernel, double spacing, int top_row) {
 // The largest eigenvalue of D^-1 A (Eq. 20 over the diagonal of Eq. 26) for the pressure
 // modes exp(i k.x) of a filled square lattice. There d_ii = 0 and, with S(k) =
 // sum_r sin(k.r) grad W(r), the operator's symbol over its diagonal is |S(k)|^2 /
-// sum_r |grad W(r)|^2: 2.149 for the cubic spline on 2 spacings, 3.78 on 3, 6.70 on 4.
+// sum_r |grad W(r)|^2: 2.149 for the cubic spline on 2 spacings, 3.773 on 3, 6.703 on 4.
 // Relaxed Jacobi diverges once omega times this exceeds 2. Scanned over a 64 x 64 grid
 // of k in [0, pi]^2 (the symbol is even in each component).
 double lattice_jacobi_bound(const Kernel2D& kernel, double spacing) {

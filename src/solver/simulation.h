@@ -31,6 +31,7 @@ struct CoarseLevel;          // the multilevel scheme's coarse level (solver/pre
 
 double lattice_kernel_sum(const Kernel2D& kernel, double spacing, int top_row = 1 << 20);
 double lattice_jacobi_bound(const Kernel2D& kernel, double spacing);
+double lattice_wall_share(const Kernel2D& kernel, double spacing);
 
 // Everything a simulation carries from one step to the next, in its own order (fluid
 // arrays as last sorted in space, boundary samples in their fixed spatial order), so
