@@ -13,18 +13,22 @@ namespace {
 
 // Density of boundary sample b from its fluid neighbours plus its wall's own share:
 //   rho_b = sum_f m_f W_bf + rho0 sum_b' V_b' W_bb' ~ sum_f m_f W_bf + gamma1 rho0,
-// the second by the definition of V_b (section 4.1; exact for a uniformly sampled wall).
-// A sample continuing the fluid's lattice is then at rest density.
-inline double boundary_density(const NeighborLists& bf, Index b, double mass, double gamma1_rho0) {
+// the second by the definition of V_b (section 4.1; exact for a uniformly sampled wall),
+// on the thesis' support; on another, the wall's share is Simulation::wall_share_ (the
+// lattice's share of the sample's own row and those below). A sample continuing the
+// fluid's lattice is then at rest density.
+inline double boundary_density(const NeighborLists& bf, Index b, double mass, double wall_share_rho0) {
   double rf = 0.0;
   for (Index k = bf.offset[b]; k < bf.offset[b + 1]; ++k) rf += bf.w[k];
-  return mass * rf + gamma1_rho0;
+  return mass * rf + wall_share_rho0;
 }
 
 }  // namespace
 
 // Section 4.1: V_b = gamma1 / sum_b' W(x_bb'), summed over all boundary particles of
 // every object (self included), so touching and overlapping objects share their volume.
+// W is the thesis' kernel (volume_kernel_), whatever the fluid's support, and V_b is scaled
+// to the fluid's m / rho0 (volume_scale_), so gamma1 keeps its calibration.
 // Each sum runs in ascending index order, whatever the grid's layout (which follows the
 // moving samples), so a volume kept from an earlier step has the same bits as one
 // computed from scratch now.
@@ -173,11 +177,11 @@ void Simulation::prepare_boundary_terms() {
 void Simulation::update_boundary_pressure() {
   const double rho0 = settings_.rest_density, inv_rho0_2 = 1.0 / (rho0 * rho0);
   if (settings_.boundary_pressure == BoundaryPressure::Solved && settings_.type == SolverType::WCSPH) {
-    const double k = settings_.stiffness, g1r = wall_share_ * rho0;
+    const double k = settings_.stiffness, wall_rho0 = wall_share_ * rho0;
     parallel_for(boundary_.size(), [&](Index b) {
       const double p = bf_.offset[b] == bf_.offset[b + 1]
                            ? 0.0
-                           : std::max(k * (boundary_density(bf_, b, mass_, g1r) / rho0 - 1.0), 0.0);
+                           : std::max(k * (boundary_density(bf_, b, mass_, wall_rho0) / rho0 - 1.0), 0.0);
       boundary_.p[b] = p;
       scratch_->pb_over_rho2[b] = p * inv_rho0_2;
     });
