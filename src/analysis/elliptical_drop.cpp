@@ -162,9 +162,8 @@ EllipticalDropResult run_elliptical_drop(const Scene& scene, double A0) {
   r.a_error = std::abs(end.a_sim - end.a_ode) / end.a_ode;
   r.b_error = std::abs(end.b_sim - end.b_ode) / end.b_ode;
   for (const EllipseSample& e : r.series) {
-    const double worst = std::max(std::abs(e.a_sim - e.a_ode) / e.a_ode, std::abs(e.b_sim - e.b_ode) / e.b_ode);
-    if (worst > r.error) {
-      r.error = worst;
+    if (e.error() > r.error) {
+      r.error = e.error();
       r.error_t = e.t;
     }
   }

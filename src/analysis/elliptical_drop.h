@@ -5,6 +5,8 @@
 // u = -A0 x, v = A0 y about its centre. An incompressible drop stays an ellipse whose
 // semi-axes a (x) and b (y) follow an ODE (ellipse_semi_axes); the simulated drop's
 // semi-axes are compared with it. Shared by `sluice validate elliptical-drop` and the tests.
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -46,6 +48,8 @@ struct EllipseSample {
   double a_sim = 0, b_sim = 0;  // from the particles' second moments [m]
   double a_ode = 0, b_ode = 0;  // ellipse_semi_axes [m]
   double xy_moment = 0;         // <x y> / sqrt(<x^2><y^2>): 0 while the axes stay on x and y
+  // The larger relative semi-axis error, |a_sim - a_ode| / a_ode or the same for b.
+  double error() const { return std::max(std::abs(a_sim - a_ode) / a_ode, std::abs(b_sim - b_ode) / b_ode); }
 };
 
 struct EllipticalDropResult {

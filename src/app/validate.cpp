@@ -415,8 +415,7 @@ void print_error_over_time(const std::vector<std::string>& solvers,
     for (const auto& r : results) {
       double worst = 0;
       for (const auto& e : r.series)
-        if (e.t <= at->t + 1e-9)
-          worst = std::max({worst, std::abs(e.a_sim - e.a_ode) / e.a_ode, std::abs(e.b_sim - e.b_ode) / e.b_ode});
+        if (e.t <= at->t + 1e-9) worst = std::max(worst, e.error());
       std::printf(" %9.3f", 100 * worst);
     }
     std::printf("\n");

@@ -87,13 +87,19 @@ Simulation::Simulation(const SimulationSetup& setup)
       kernel_(0.5 * setup.solver.support * setup.spacing, setup.solver.kernel),
       volume_kernel_(0.5 * std::min(setup.solver.support, 2.0) * setup.spacing, KernelKind::CubicSpline),
       mass_(setup.solver.rest_density / lattice_kernel_sum(kernel_, setup.spacing)),
-      wall_share_(setup.solver.gamma1 *
-                  (lattice_wall_share(kernel_, setup.spacing) / lattice_wall_share(volume_kernel_, setup.spacing))),
-      volume_scale_(lattice_kernel_sum(volume_kernel_, setup.spacing) / lattice_kernel_sum(kernel_, setup.spacing)),
-      omega_(setup.solver.omega * (lattice_jacobi_bound(Kernel2D(setup.spacing), setup.spacing) /
-                                   lattice_jacobi_bound(kernel_, setup.spacing))),
+      wall_share_(setup.solver.gamma1),
+      volume_scale_(1.0),
+      omega_(setup.solver.omega),
       scratch_(std::make_unique<SolverScratch>()) {
   SLUICE_ASSERT(setup.spacing > 0, "the setup's spacing is positive (the scene checks it)");
+  // gamma1 and omega are calibrated on the thesis' kernel; another kernel or support scales
+  // them by the lattice (see simulation.h). On the thesis' own they stay as they are.
+  if (kernel_.kind() != KernelKind::CubicSpline || setup.solver.support != 2.0) {
+    const double h = setup.spacing;
+    wall_share_ *= lattice_wall_share(kernel_, h) / lattice_wall_share(volume_kernel_, h);
+    volume_scale_ = lattice_kernel_sum(volume_kernel_, h) / lattice_kernel_sum(kernel_, h);
+    omega_ *= lattice_jacobi_bound(Kernel2D(h), h) / lattice_jacobi_bound(kernel_, h);
+  }
   SLUICE_ASSERT(setup.boundary_object.empty() || setup.boundary_object.size() == setup.boundary_x.size(),
                 "one object index per boundary sample");
   for (const BoundaryObject& obj : setup.objects)
