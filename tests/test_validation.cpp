@@ -129,6 +129,23 @@ TEST(Validation, ThinPlateLeavesWaterStill) {
   }
 }
 
+// Still water without time.settle (issue 35 item 3): the tank of thin_plate.json with the
+// plate lifted out and no settling. On Wendland's C2 the square lattice the fluid starts on
+// stays still under its hydrostatic pressure with either solver; on the thesis' cubic
+// spline it does not (median 0.0092 / 0.0076 m/s at 2 s: disordered motion that grows from
+// the first steps, docs/validation.md), which is why the shipped scenes settle first.
+TEST(Validation, TankWithoutSettlingStaysStillOnWendlandC2) {
+  for (const char* solver : {"iisph", "wcsph"}) {
+    std::vector<std::string> set{std::string("solver.type=") + solver, "solver.kernel=wendland_c2", "time.settle=0",
+                                 "boundaries.1.points=[[0.405,0.56],[0.405,0.59]]"};
+    if (std::string(solver) == "wcsph") set.push_back("time.dt=null");
+    const analysis::AtRestResult r = analysis::run_at_rest(load_scene(kRoot + "scenes/hard/thin_plate.json", set));
+    std::printf("[ measured ] tank without settling, Wendland C2, %s: median %.5f m/s, max %.5f m/s\n", solver,
+                r.median_speed_end, r.max_speed_end);
+    EXPECT_LE(r.median_speed_end, 0.005) << solver;
+  }
+}
+
 // --- `sluice validate`, run as a process -----------------------------------------------
 // Each subcommand as a user runs it, in a folder holding the shipped scenes (its default
 // scene files), shortened with its own flags where the full run takes minutes. A
