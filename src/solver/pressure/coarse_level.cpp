@@ -68,10 +68,12 @@ struct AggregateTerms {
 // Samples' own cells (fluid-free below a floor) stay beside the fluid above them.
 void drop_sparse_aggregates(CoarseLevel& cl, Index count, Index fluid, double cell) {
   const Index min_fluid = static_cast<Index>(std::floor(cell * cell));
-  std::vector<Index> members(static_cast<size_t>(count), 0);
+  std::vector<Index>& members = cl.members;  // kept between solves: no allocation per step
+  std::vector<Index>& renumber = cl.renumber;
+  members.assign(static_cast<size_t>(count), 0);
+  renumber.assign(static_cast<size_t>(count), -1);
   for (Index u = 0; u < fluid; ++u)
     if (cl.aggregate[u] >= 0) ++members[static_cast<size_t>(cl.aggregate[u])];
-  std::vector<Index> renumber(static_cast<size_t>(count), -1);
   Index kept = 0;
   for (Index a = 0; a < count; ++a) {
     Index near = 0;
@@ -90,8 +92,10 @@ void drop_sparse_aggregates(CoarseLevel& cl, Index count, Index fluid, double ce
   }
   cl.cell_x.resize(static_cast<size_t>(kept));
   cl.cell_y.resize(static_cast<size_t>(kept));
-  for (Index& a : cl.cell_aggregate)
+  for (long c = 0; c < cl.nx * cl.ny; ++c) {  // the table has headroom past nx * ny (all -1)
+    Index& a = cl.cell_aggregate[static_cast<size_t>(c)];
     if (a >= 0) a = renumber[static_cast<size_t>(a)];
+  }
   for (Index& a : cl.aggregate)
     if (a >= 0) a = renumber[static_cast<size_t>(a)];
   cl.aggregates = kept;

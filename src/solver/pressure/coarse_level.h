@@ -40,6 +40,7 @@ struct CoarseLevel {
   std::vector<std::uint8_t> slot_entry;  // whether any chunk touched the slot
   std::vector<int> row_start;            // A_c's row offsets
   std::vector<double> neg_m_over_rho2;   // -m / rho_f^2 per fluid particle (the same bits as per pair)
+  std::vector<Index> members, renumber;  // drop_sparse_aggregates: fluid per aggregate, new numbers
 };
 
 }  // namespace sluice
