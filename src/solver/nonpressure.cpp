@@ -1,6 +1,7 @@
 #include "solver/simulation.h"
 
 #include "core/parallel.h"
+#include "core/select.h"
 #include "solver/internal.h"
 
 namespace sluice {
@@ -28,9 +29,11 @@ void Simulation::viscous_accelerations(double dt, double avc, std::vector<Vec2>&
       const double r2 = xij.squaredNorm() + eps, vx = vij.dot(xij);
       if (kViscous) lap += vol[j] * (xij.dot(gw) / r2) * vij;
       // A select, not a branch: approaching and receding pairs alternate at random, and
-      // adding 0 * grad W leaves the sum's bits as the branch left them.
-      const double pi_ij = mass_ * vx / (r2 * 0.5 * (rhoi + fluid_.rho[j]));
-      art += (vx < 0.0 ? pi_ij : 0.0) * gw;
+      // adding 0 * grad W leaves the sum's bits as the branch left them. The select is on
+      // v_ij . x_ij, before the division: a select after it let GCC branch around the
+      // division, mispredicted in every second pair (the pass took 3.5 Jacobi sweeps).
+      const double approach = select(vx < 0.0, vx, 0.0);
+      art += (mass_ * approach / (r2 * 0.5 * (rhoi + fluid_.rho[j]))) * gw;
     }
     Vec2 acc = kViscous ? Vec2(2.0 * nu * lap + avc * art) : Vec2(avc * art);
     double w = 0.0;
