@@ -1,8 +1,9 @@
 #pragma once
 // A select between two doubles that GCC cannot turn into a branch. Without SSE4.1's
-// blendv (baseline x86-64), GCC compiles `c ? a : b` on doubles to a conditional jump,
-// and in the pair loops c (near or far on the kernel, approaching or receding) is random:
-// about one misprediction in every second pair. Masks give the same bits as the branch.
+// blendv (baseline x86-64), GCC compiles `c ? a : b` on doubles to a conditional jump;
+// where c is random in a pair loop (a pair approaching or receding), that mispredicts in
+// about every second pair. Masks give the same bits as the branch. (Not everywhere a
+// win: the kernel's near/far select stays a branch, since its far side divides.)
 #include <bit>
 #include <cstdint>
 

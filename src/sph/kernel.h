@@ -13,10 +13,8 @@
 // no pairing instability, so a stretched lattice keeps its kernel sum at wider supports):
 //   W(r, h) = alpha_w (1 - q/2)^4 (1 + 2q)  for q < 2,  alpha_w = 7 / (4 pi h^2),
 //   dW/dr / r = -5 alpha_w (1 - q/2)^3 / h^2 (no division, finite at r = 0).
-#include <algorithm>
 #include <cmath>
 
-#include "core/select.h"
 #include "core/types.h"
 
 namespace sluice {
@@ -94,11 +92,9 @@ class Kernel2D {
     // (-3 a^2 + 12 b^2) / q = -12 + 9 q: no division, and finite at r = 0.
     const double d_near = alpha_ * inv_h_ * inv_h_ * (9.0 * q - 12.0);
     const double w_far = alpha_ * a * a * a;
-    // r > h / 2 wherever d_far is kept, so this divides by r there (and never by 0); a
-    // division that depends on `near` made GCC branch on it, mispredicted at random.
-    const double d_far = alpha_ * inv_h_ * (-3.0 * a * a) / std::max(r, 0.5 * h_);
-    w = select(near, w_near, w_far);
-    dw_over_r = select(near, d_near, d_far);
+    const double d_far = alpha_ * inv_h_ * (-3.0 * a * a) / (near ? 1.0 : r);
+    w = near ? w_near : w_far;
+    dw_over_r = near ? d_near : d_far;
   }
 
  private:
