@@ -1,10 +1,14 @@
 // Cubic spline kernel (src/sph/kernel.h): normalisation, values, support, continuity,
-// gradient against finite differences, lattice sums.
+// gradient against finite differences, lattice sums; and the pair loops' mask select.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <random>
 
+#include "core/select.h"
 #include "solver/simulation.h"
 #include "sph/kernel.h"
 
@@ -304,6 +308,18 @@ TEST(Kernel, LatticeWallShare) {
   EXPECT_NEAR(lattice_wall_share(k, h), 1.0 - above / lattice_kernel_sum(k, h), 1e-12);
   EXPECT_NEAR(lattice_wall_share(k, h), 0.840753, 1e-6);
   EXPECT_NEAR(lattice_wall_share(Kernel2D(1.5 * h), h), 0.727517, 1e-6);
+}
+
+// The pair loops' mask select (core/select.h) returns one operand's exact bits, as the
+// branch it replaces: signed zeros, infinities and NaN payloads included.
+TEST(Select, ReturnsTheChosenOperandBitForBit) {
+  const double nan = std::bit_cast<double>(std::uint64_t{0x7ff8000000000123});
+  const double values[] = {1.5, -2.25, 0.0, -0.0, std::numeric_limits<double>::infinity(), nan, 5e-324};
+  for (const double a : values)
+    for (const double b : values) {
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(select(true, a, b)), std::bit_cast<std::uint64_t>(a));
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(select(false, a, b)), std::bit_cast<std::uint64_t>(b));
+    }
 }
 
 }  // namespace

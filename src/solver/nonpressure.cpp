@@ -29,9 +29,9 @@ void Simulation::viscous_accelerations(double dt, double avc, std::vector<Vec2>&
       const double r2 = xij.squaredNorm() + eps, vx = vij.dot(xij);
       if (kViscous) lap += vol[j] * (xij.dot(gw) / r2) * vij;
       // A select, not a branch: approaching and receding pairs alternate at random, and
-      // adding 0 * grad W leaves the sum's bits as the branch left them. The select is on
-      // v_ij . x_ij, before the division: a select after it let GCC branch around the
-      // division, mispredicted in every second pair (the pass took 3.5 Jacobi sweeps).
+      // adding 0 * grad W leaves the sum's bits as the branch left them. It picks v_ij . x_ij
+      // before the division, through masks: a select after it let GCC branch around the
+      // division, mispredicted in about every second pair.
       const double approach = select(vx < 0.0, vx, 0.0);
       art += (mass_ * approach / (r2 * 0.5 * (rhoi + fluid_.rho[j]))) * gw;
     }
