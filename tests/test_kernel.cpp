@@ -312,13 +312,13 @@ TEST(Kernel, LatticeWallShare) {
 
 // The pair loops' mask select (core/select.h) returns one operand's exact bits, as the
 // branch it replaces: signed zeros, infinities and NaN payloads included.
-TEST(Select, ReturnsTheChosenOperandBitForBit) {
+TEST(MaskSelect, ReturnsTheChosenOperandBitForBit) {
   const double nan = std::bit_cast<double>(std::uint64_t{0x7ff8000000000123});
   const double values[] = {1.5, -2.25, 0.0, -0.0, std::numeric_limits<double>::infinity(), nan, 5e-324};
   for (const double a : values)
     for (const double b : values) {
-      EXPECT_EQ(std::bit_cast<std::uint64_t>(select(true, a, b)), std::bit_cast<std::uint64_t>(a));
-      EXPECT_EQ(std::bit_cast<std::uint64_t>(select(false, a, b)), std::bit_cast<std::uint64_t>(b));
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(mask_select(true, a, b)), std::bit_cast<std::uint64_t>(a));
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(mask_select(false, a, b)), std::bit_cast<std::uint64_t>(b));
     }
 }
 

@@ -32,7 +32,7 @@ void Simulation::viscous_accelerations(double dt, double avc, std::vector<Vec2>&
       // adding 0 * grad W leaves the sum's bits as the branch left them. It picks v_ij . x_ij
       // before the division, through masks: a select after it let GCC branch around the
       // division, mispredicted in about every second pair.
-      const double approach = select(vx < 0.0, vx, 0.0);
+      const double approach = mask_select(vx < 0.0, vx, 0.0);
       art += (mass_ * approach / (r2 * 0.5 * (rhoi + fluid_.rho[j]))) * gw;
     }
     Vec2 acc = kViscous ? Vec2(2.0 * nu * lap + avc * art) : Vec2(avc * art);
