@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "core/select.h"
 #include "solver/simulation.h"
@@ -320,6 +321,32 @@ TEST(MaskSelect, ReturnsTheChosenOperandBitForBit) {
       EXPECT_EQ(std::bit_cast<std::uint64_t>(mask_select(true, a, b)), std::bit_cast<std::uint64_t>(a));
       EXPECT_EQ(std::bit_cast<std::uint64_t>(mask_select(false, a, b)), std::bit_cast<std::uint64_t>(b));
     }
+}
+
+// compute_density evaluates two pairs at once (Kernel2D::eval2); GoldenState's hashes rely
+// on each lane giving eval's bits, at the knots, the support's edge and r = 0 included.
+TEST(Kernel, EvalTwoAtOnceGivesEvalsBitsInEachLane) {
+  for (const KernelKind kind : {KernelKind::CubicSpline, KernelKind::WendlandC2}) {
+    const double h = 0.0039;
+    const Kernel2D k(h, kind);
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(0.0, 2.2 * h);
+    std::vector<double> r = {
+        0.0, h, std::nextafter(h, 0.0), std::nextafter(h, 1.0), 2.0 * h, std::nextafter(2.0 * h, 0.0), 5e-324};
+    for (int t = 0; t < 2000; ++t) r.push_back(u(rng));
+    for (size_t a = 0; a < r.size(); ++a) {
+      const double r0 = r[a], r1 = r[(a * 7 + 3) % r.size()];
+      Double2 w2, d2;
+      k.eval2(lanes(r0, r1), w2, d2);
+      double w0, dw0, w1, dw1;
+      k.eval(r0, w0, dw0);
+      k.eval(r1, w1, dw1);
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(w2[0]), std::bit_cast<std::uint64_t>(w0)) << r0;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(d2[0]), std::bit_cast<std::uint64_t>(dw0)) << r0;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(w2[1]), std::bit_cast<std::uint64_t>(w1)) << r1;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(d2[1]), std::bit_cast<std::uint64_t>(dw1)) << r1;
+    }
+  }
 }
 
 }  // namespace

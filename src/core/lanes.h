@@ -1,0 +1,38 @@
+#pragma once
+// Two doubles in one register (SSE2 on x86-64, NEON on AArch64, GCC's and Clang's vector
+// extension elsewhere). Each lane gets the same IEEE operation as scalar code would, so
+// a pair loop that evaluates two pairs at once gives the scalar loop's bits; only the
+// square root and the division, which are slow on one lane, get twice the throughput.
+#include <cmath>
+#include <cstdint>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#elif defined(__aarch64__)
+#include <arm_neon.h>
+#endif
+
+namespace sluice {
+
+using Double2 = double __attribute__((vector_size(16)));
+using Mask2 = std::int64_t __attribute__((vector_size(16)));  // a comparison's lanes: all ones or zero
+
+inline Double2 lanes(double a, double b) { return Double2{a, b}; }
+inline Double2 splat(double a) { return Double2{a, a}; }
+
+inline Double2 sqrt_lanes(Double2 v) {
+#if defined(__SSE2__)
+  return _mm_sqrt_pd(v);
+#elif defined(__aarch64__)
+  return vsqrtq_f64(v);
+#else
+  return Double2{std::sqrt(v[0]), std::sqrt(v[1])};
+#endif
+}
+
+// Per lane, m ? a : b, through masks (never a branch).
+inline Double2 select_lanes(Mask2 m, Double2 a, Double2 b) {
+  return reinterpret_cast<Double2>((reinterpret_cast<Mask2>(a) & m) | (reinterpret_cast<Mask2>(b) & ~m));
+}
+
+}  // namespace sluice
