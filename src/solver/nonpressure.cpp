@@ -1,5 +1,6 @@
 #include "solver/simulation.h"
 
+#include "core/lanes.h"
 #include "core/parallel.h"
 #include "core/select.h"
 #include "solver/internal.h"
@@ -23,7 +24,7 @@ void Simulation::viscous_accelerations(double dt, double avc, std::vector<Vec2>&
     const Vec2 xi = fluid_.x[i], vi = fluid_.v[i];
     const double rhoi = fluid_.rho[i];
     Vec2 lap = Vec2::Zero(), art = Vec2::Zero();
-    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
+    auto pair = [&](Index k) {
       const Index j = ff_.j[k];
       const Vec2 xij = xi - fluid_.x[j], vij = vi - fluid_.v[j], gw = ff_.grad[k].cast<double>();
       const double r2 = xij.squaredNorm() + eps, vx = vij.dot(xij);
@@ -34,7 +35,30 @@ void Simulation::viscous_accelerations(double dt, double avc, std::vector<Vec2>&
       // division, mispredicted in about every second pair.
       const double approach = mask_select(vx < 0.0, vx, 0.0);
       art += (mass_ * approach / (r2 * 0.5 * (rhoi + fluid_.rho[j]))) * gw;
+    };
+    // Two pairs at a time, as pair() does each (one division instruction for both), summed
+    // in list order: the same bits.
+    Index k = ff_.offset[i];
+    for (const Index end = ff_.offset[i + 1]; k + 1 < end; k += 2) {
+      const Index j0 = ff_.j[k], j1 = ff_.j[k + 1];
+      const Vec2 x0 = xi - fluid_.x[j0], x1 = xi - fluid_.x[j1];
+      const Vec2 v0 = vi - fluid_.v[j0], v1 = vi - fluid_.v[j1];
+      const Vec2 g0 = ff_.grad[k].cast<double>(), g1 = ff_.grad[k + 1].cast<double>();
+      const Double2 xx = lanes(x0.x(), x1.x()), xy = lanes(x0.y(), x1.y());
+      const Double2 r2 = (xx * xx + xy * xy) + eps;
+      const Double2 vx = lanes(v0.x(), v1.x()) * xx + lanes(v0.y(), v1.y()) * xy;
+      if (kViscous) {
+        const Double2 dg = xx * lanes(g0.x(), g1.x()) + xy * lanes(g0.y(), g1.y());
+        const Double2 s2 = lanes(vol[j0], vol[j1]) * (dg / r2);
+        lap += s2[0] * v0;
+        lap += s2[1] * v1;
+      }
+      const Double2 approach = select_lanes(vx < 0.0, vx, splat(0.0));
+      const Double2 c2 = mass_ * approach / (r2 * 0.5 * (rhoi + lanes(fluid_.rho[j0], fluid_.rho[j1])));
+      art += c2[0] * g0;
+      art += c2[1] * g1;
     }
+    if (k < ff_.offset[i + 1]) pair(k);
     Vec2 acc = kViscous ? Vec2(2.0 * nu * lap + avc * art) : Vec2(avc * art);
     double w = 0.0;
     for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
