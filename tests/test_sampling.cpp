@@ -363,7 +363,8 @@ TEST(SamplingErrors, PointSamples) {
            {"/boundaries/0/file: expected a non-empty string, got 3"}},
           {"layers",
            boundary(R"({"shape": "points", "samples": [[0, 0]], "layers": 2})"),
-           {"/boundaries/0/layers: unknown key; allowed keys: shape, name, motion, file, samples"}},
+           {"/boundaries/0/layers: unknown key; allowed keys: shape, name, wall, wall_viscosity, motion, file, "
+            "samples"}},
           {"spacing",
            boundary(R"({"shape": "points", "samples": [[0, 0]], "spacing": 0.1})"),
            {"/boundaries/0/spacing: unknown key"}},

@@ -182,8 +182,19 @@ TEST(SceneErrors, BadInputsNameFilePathAndAllowed) {
         "artificial_viscosity, sound_speed, gradient_correction, kernel, support, tolerance,"}},
       {"unknown boundary key",
        scene_with(R"("boundaries": [{"shape": "circle", "center": [0, 0], "radius": 1, "lid": true}],)"),
-       {"/boundaries/0/lid: unknown key; allowed keys: shape, name, center, radius, spacing, fluid_side, layers, "
+       {"/boundaries/0/lid: unknown key; allowed keys: shape, name, wall, wall_viscosity, center, radius, spacing, "
+        "fluid_side, layers, "
         "layer_spacing"}},
+      {"unknown wall kind",
+       scene_with(R"("boundaries": [{"shape": "circle", "center": [0, 0], "radius": 1, "wall": "sticky"}],)"),
+       {"/boundaries/0/wall", "sticky", "free_slip", "no_slip"}},
+      {"negative wall viscosity",
+       scene_with(
+           R"("boundaries": [{"shape": "circle", "center": [0, 0], "radius": 1, "wall": "no_slip", "wall_viscosity": -1}],)"),
+       {"/boundaries/0/wall_viscosity", "-1", ">= 0"}},
+      {"wall viscosity on a free-slip wall",
+       scene_with(R"("boundaries": [{"shape": "circle", "center": [0, 0], "radius": 1, "wall_viscosity": 1e-3}],)"),
+       {"/boundaries/0/wall_viscosity: applies to a no-slip wall only"}},
       {"wrong type vec2",
        scene_with("", R"([{"shape": "rectangle", "min": "abc", "max": [1, 1]}])"),
        {R"(scenes/x.json:1:58: /fluid/0/min: expected an array of 2 numbers, got "abc")"}},

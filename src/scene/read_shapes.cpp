@@ -179,6 +179,11 @@ shapes::BoundaryShape read_boundary(Reader& r, const Context& ctx, std::size_t i
   shapes::BoundaryShape b;
   shape = r.choice("shape", {"box", "polyline", "polygon", "circle", "ellipse", "points"}, nullptr);
   name = r.string("name", shape + std::to_string(index));
+  obj.no_slip = r.choice("wall", {"free_slip", "no_slip"}, "free_slip") == "no_slip";
+  const double default_viscosity = obj.wall_viscosity;
+  obj.wall_viscosity = r.number("wall_viscosity", default_viscosity, Range::at_least(0, "[m^2/s]"));
+  if (!obj.no_slip && obj.wall_viscosity != default_viscosity)
+    ctx.fail(r.at("wall_viscosity"), "applies to a no-slip wall only; add \"wall\": \"no_slip\" or remove it");
   if (shape == "points") {
     read_object_motion(r, ctx, obj);
     return read_point_samples(r, ctx);

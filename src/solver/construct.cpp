@@ -131,6 +131,13 @@ Simulation::Simulation(const SimulationSetup& setup)
       moving_.push_back(k);
     }
   }
+  boundary_.wall_nu.assign(nb, 0.0);
+  for (Index k = 0; k < nb; ++k) {
+    const Index o = boundary_.object[k];
+    if (o < static_cast<Index>(setup.objects.size()) && setup.objects[o].no_slip)
+      boundary_.wall_nu[k] = setup.objects[o].wall_viscosity;
+    has_no_slip_ = has_no_slip_ || boundary_.wall_nu[k] > 0.0;
+  }
   boundary_.x0 = boundary_.x;
   boundary_.v.assign(nb, Vec2::Zero());
   boundary_.a.assign(nb, Vec2::Zero());

@@ -38,12 +38,12 @@ void Simulation::viscous_accelerations(double dt, double avc, std::vector<Vec2>&
     };
     // Two pairs at a time, as pair() does each (one division instruction for both), summed
     // in list order: the same bits.
-    Index k = ff_.offset[i];
-    for (const Index end = ff_.offset[i + 1]; k + 1 < end; k += 2) {
-      const Index j0 = ff_.j[k], j1 = ff_.j[k + 1];
+    Index kf = ff_.offset[i];
+    for (const Index end = ff_.offset[i + 1]; kf + 1 < end; kf += 2) {
+      const Index j0 = ff_.j[kf], j1 = ff_.j[kf + 1];
       const Vec2 x0 = xi - fluid_.x[j0], x1 = xi - fluid_.x[j1];
       const Vec2 v0 = vi - fluid_.v[j0], v1 = vi - fluid_.v[j1];
-      const Vec2 g0 = ff_.grad[k].cast<double>(), g1 = ff_.grad[k + 1].cast<double>();
+      const Vec2 g0 = ff_.grad[kf].cast<double>(), g1 = ff_.grad[kf + 1].cast<double>();
       const Double2 xx = lanes(x0.x(), x1.x()), xy = lanes(x0.y(), x1.y());
       const Double2 r2 = (xx * xx + xy * xy) + eps;
       const Double2 vx = lanes(v0.x(), v1.x()) * xx + lanes(v0.y(), v1.y()) * xy;
@@ -58,15 +58,29 @@ void Simulation::viscous_accelerations(double dt, double avc, std::vector<Vec2>&
       art += c2[0] * g0;
       art += c2[1] * g1;
     }
-    if (k < ff_.offset[i + 1]) pair(k);
+    if (kf < ff_.offset[i + 1]) pair(kf);
     Vec2 acc = kViscous ? Vec2(2.0 * nu * lap + avc * art) : Vec2(avc * art);
+    // Walls (free slip unless the scene says no_slip): the artificial viscosity sees only the
+    // velocity along the wall's normal n_i and pushes only along it, so that sliding along a
+    // wall costs nothing; a no-slip wall adds Eq. 12 with its own viscosity. n_i is the
+    // direction of sum_b V_b grad W_ib (the wall as particle i sees it; its sign cancels).
+    // The thesis is silent; Monaghan's viscosity against walls acts as a friction whose
+    // coefficient alpha c h is set by the column's height (docs/validation.md).
+    Vec2 n_i = Vec2::Zero();
+    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k)
+      n_i += boundary_.volume[fb_.j[k]] * fb_.grad[k].cast<double>();
+    const double len = n_i.norm();
+    if (len > 0.0) n_i /= len;  // else: no wall neighbour, or walls cancelling on both sides
     double w = 0.0;
     for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
       const Index b = fb_.j[k];
       const Vec2 xib = xi - boundary_.x[b], vib = vi - boundary_.v[b], gw = fb_.grad[k].cast<double>();
-      const double r2 = xib.squaredNorm() + eps, vx = vib.dot(xib), vb = boundary_.volume[b];
-      Vec2 a = kViscous ? Vec2((2.0 * nu * vb * (xib.dot(gw) / r2)) * vib) : Vec2(Vec2::Zero());
-      if (vx < 0.0) a += (avc * rho0 * vb * vx / (r2 * 0.5 * (rhoi + rho0))) * gw;
+      const double r2 = xib.squaredNorm() + eps, vb = boundary_.volume[b];
+      const double nu_b = boundary_.wall_nu[b];
+      Vec2 a = Vec2::Zero();
+      if (nu_b > 0.0) a = (2.0 * nu_b * vb * (xib.dot(gw) / r2)) * vib;
+      const double vx = vib.dot(n_i) * n_i.dot(xib);
+      if (vx < 0.0) a += ((avc * rho0 * vb * vx / (r2 * 0.5 * (rhoi + rho0))) * gw.dot(n_i)) * n_i;
       acc += a;
       if (work) w += a.dot(boundary_.v[b]);
     }
@@ -76,18 +90,19 @@ void Simulation::viscous_accelerations(double dt, double avc, std::vector<Vec2>&
 }
 
 // v* = v + dt (a_v + g): the viscosity of Eq. 12 and Monaghan's artificial viscosity
-// (1992, Eq. 4.1; the thesis has none), against fluid and boundary neighbours (boundary
-// neighbours with their own velocity, m_b = rho0 V_b, rho_b = rho0):
+// (1992, Eq. 4.1; the thesis has none), against fluid neighbours and, on the velocity along
+// the wall's normal only, boundary neighbours (with their own velocity, m_b = rho0 V_b,
+// rho_b = rho0); a no-slip object adds Eq. 12 with its wall_viscosity:
 //   a_i += -sum_j m_j Pi_ij grad W_ij,  Pi_ij = -alpha c h mu_ij / rho_ij for v_ij . x_ij < 0,
 //   mu_ij = v_ij . x_ij / (|x_ij|^2 + 0.01 h^2),  rho_ij = (rho_i + rho_j) / 2.
-// With both off the neighbour pass is skipped. The boundary pairs' share of a_v, times
+// With both off and no no-slip wall the pass is skipped. The boundary pairs' share of a_v, times
 // the boundary velocity, is the boundaries' work on the fluid (scratch_->work).
 void Simulation::apply_nonpressure(double dt) {
   const Vec2 g = settings_.gravity;
   const double nu = settings_.viscosity;
   const double avc = settings_.artificial_viscosity * sound_speed_ * setup_.spacing;
   const Index n = fluid_.size();
-  if (nu <= 0.0 && avc <= 0.0) {
+  if (nu <= 0.0 && avc <= 0.0 && !has_no_slip_) {
     parallel_for(n, [&](Index i) { fluid_.v[i] += dt * g; });
     return;
   }

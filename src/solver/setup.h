@@ -16,9 +16,14 @@ namespace sluice {
 // One boundary object (a wall, a container, an obstacle). Its samples are
 // boundary_x[first, first + count).
 struct BoundaryObject {
-  std::string name;                // "name" key, or "<shape><index>"
-  std::string shape;               // box | polyline | polygon | circle | ellipse
-  bool moving = false;             // has a scripted motion; false: a wall at rest (volumes computed once)
+  std::string name;     // "name" key, or "<shape><index>"
+  std::string shape;    // box | polyline | polygon | circle | ellipse
+  bool moving = false;  // has a scripted motion; false: a wall at rest (volumes computed once)
+  // The fluid's tangential motion along the object: free slip (the default; the artificial
+  // viscosity acts only on the velocity normal to the wall), or no slip through a physical
+  // viscosity of wall_viscosity [m^2/s] (Eq. 12 against the wall's samples).
+  bool no_slip = false;
+  double wall_viscosity = 1.0e-6;  // water at 20 degrees C
   Motion motion;                   // pose over time; boundary_x holds the samples at rest (identity pose)
   shapes::BoundaryShape geometry;  // the shape at rest (solid-side tests, e.g. leak checks)
   Index first = 0;

@@ -190,9 +190,10 @@ class Simulation {
   // so that a wider support keeps the thesis' margin to Jacobi's divergence (exactly
   // solver.omega on the thesis' support).
   double omega_;
-  double sound_speed_ = 0;  // c of the artificial viscosity [m/s]
-  double wcsph_speed_ = 0;  // sqrt(k / rho0), WCSPH's acoustic time step [m/s]
-  long settle_steps_ = 0;   // steps taken by settle()
+  bool has_no_slip_ = false;  // a boundary object with wall = no_slip and a viscosity > 0
+  double sound_speed_ = 0;    // c of the artificial viscosity [m/s]
+  double wcsph_speed_ = 0;    // sqrt(k / rho0), WCSPH's acoustic time step [m/s]
+  long settle_steps_ = 0;     // steps taken by settle()
 
   FluidParticles fluid_;
   BoundaryParticles boundary_;

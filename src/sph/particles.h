@@ -40,6 +40,7 @@ struct BoundaryParticles {
   std::vector<double> volume;        // V_b = gamma1 / sum_b W (section 4.1) [m^2]
   std::vector<double> p;             // extrapolated pressure (Eq. 25) [Pa m]
   std::vector<Index> object;         // index of the scene's boundary object
+  std::vector<double> wall_nu;       // the object's wall_viscosity if it is no-slip, else 0 [m^2/s]
 
   Index size() const { return static_cast<Index>(x.size()); }
 };
