@@ -172,6 +172,20 @@ std::vector<std::pair<double, double>> martin_moyce_n2_a225() {
           {6.822, 9.986}, {7.439, 10.963}, {8.031, 11.977}, {8.633, 13.005}, {9.237, 13.970}};
 }
 
+// RMS relative difference of two fronts at the experiment's times (both interpolated).
+double front_difference(const DamBreakResult& a, const DamBreakResult& b) {
+  std::vector<double> za, zb;
+  for (const auto& p : a.compared)
+    for (const auto& q : b.compared)
+      if (p.T == q.T) {
+        za.push_back(p.Z_simulated);
+        zb.push_back(q.Z_simulated);
+      }
+  double sum = 0;
+  for (size_t k = 0; k < za.size(); ++k) sum += (za[k] - zb[k]) * (za[k] - zb[k]) / (zb[k] * zb[k]);
+  return za.empty() ? std::nan("") : std::sqrt(sum / static_cast<double>(za.size()));
+}
+
 DamBreakResult run_dam_break_front(const Scene& scene) {
   if (scene.fluid_x.empty()) throw SceneError(scene.file + ": /fluid: the dam break needs a fluid column");
   const double h = scene.spacing, g = gravity_magnitude(scene);

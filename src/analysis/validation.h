@@ -114,4 +114,8 @@ struct DamBreakResult {
 // (time.duration) before the first measured time: there would be no front to compare.
 DamBreakResult run_dam_break_front(const Scene& scene);
 
+// RMS relative difference of two fronts at the experiment's times (both interpolated),
+// relative to b's: the measure of `validate dam-break`'s resolution and solver comparisons.
+double front_difference(const DamBreakResult& a, const DamBreakResult& b);
+
 }  // namespace sluice::analysis

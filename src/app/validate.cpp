@@ -234,20 +234,6 @@ int validate_thin_plate(const ValidateOptions& o, const fs::path& dir) {
 // floor; its step is the acoustic one (0.4 h / (c + v_max), c = sqrt(k / rho0)).
 const std::vector<std::string> kWcsphDamBreak{"solver.type=wcsph", "solver.stiffness=2e6"};
 
-// RMS relative difference of two fronts at the experiment's times (both interpolated).
-double front_difference(const analysis::DamBreakResult& a, const analysis::DamBreakResult& b) {
-  std::vector<double> za, zb;
-  for (const auto& p : a.compared)
-    for (const auto& q : b.compared)
-      if (p.T == q.T) {
-        za.push_back(p.Z_simulated);
-        zb.push_back(q.Z_simulated);
-      }
-  double sum = 0;
-  for (size_t k = 0; k < za.size(); ++k) sum += (za[k] - zb[k]) * (za[k] - zb[k]) / (zb[k] * zb[k]);
-  return za.empty() ? std::nan("") : std::sqrt(sum / static_cast<double>(za.size()));
-}
-
 // The observed order of convergence from three successive resolutions h1 > h2 > h3: with
 // d12 and d23 the RMS differences between their fronts, d12 / d23 = (h1 / h2)^p for a
 // front that converges with order p (Roache 1998, Verification and Validation in
@@ -261,8 +247,8 @@ std::string observed_order(const ResolutionLevels& levels) {
   for (const auto& [solver, runs] : levels) {
     for (size_t k = 0; k + 2 < runs.size(); ++k) {
       const double h1 = runs[k].first, h2 = runs[k + 1].first, h3 = runs[k + 2].first;
-      const double d12 = front_difference(*runs[k].second, *runs[k + 1].second);
-      const double d23 = front_difference(*runs[k + 1].second, *runs[k + 2].second);
+      const double d12 = analysis::front_difference(*runs[k].second, *runs[k + 1].second);
+      const double d23 = analysis::front_difference(*runs[k + 1].second, *runs[k + 2].second);
       const double ratio = d12 / d23, order = std::log(ratio) / std::log(h1 / h2);
       if (!header) {
         std::printf(
@@ -346,7 +332,7 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
   std::printf("\nRMS relative difference of the fronts at the measured times\n");
   std::string diffs = "what,a,b,rms_relative_difference\n";
   auto report = [&](const std::string& what, const Run& a, const Run& b) {
-    const double d = front_difference(a.r, b.r);
+    const double d = analysis::front_difference(a.r, b.r);
     std::printf("  %-26s %-24s %-24s %7.2f %%\n", what.c_str(), a.label.c_str(), b.label.c_str(), 100 * d);
     diffs += what + "," + a.label + "," + b.label + "," + number_text(d) + "\n";
   };
