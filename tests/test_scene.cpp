@@ -470,6 +470,11 @@ TEST(SceneSettings, PressureSolverChoices) {
   EXPECT_EQ(m.solver.multilevel_cell, 4.0);
   EXPECT_EQ(m.resolved["solver"]["pressure_solver"], "multilevel");
   EXPECT_EQ(parse_scene(text, kFile).solver.multilevel_cell, 6.0);
+  EXPECT_EQ(parse_scene(text, kFile).solver.multilevel_wall_sweeps, 2);
+  EXPECT_EQ(parse_scene(text, kFile, {"solver.multilevel_wall_sweeps=0"}).solver.multilevel_wall_sweeps, 0);
+  const std::string sweeps = error_of(text, {"solver.multilevel_wall_sweeps=101"});
+  EXPECT_NE(sweeps.find("/solver/multilevel_wall_sweeps"), std::string::npos) << sweeps;
+  EXPECT_NE(sweeps.find("101"), std::string::npos) << sweeps;
   const std::string cell = error_of(text, {"solver.multilevel_cell=1.5"});
   EXPECT_NE(cell.find("/solver/multilevel_cell: value 1.5 is out of range; must be in [2, 64]"), std::string::npos)
       << cell;

@@ -27,8 +27,11 @@ struct SolverScratch {
   // waits for (-1: deferred until every range is done), and the deferred particles.
   std::vector<Index> sweep_range;
   std::vector<std::int8_t> sweep_lag;
-  std::vector<Index> deferred;       // ascending
-  std::vector<double> err_partial;   // sums of err over blocks of kReduceBlock
+  std::vector<Index> deferred;      // ascending
+  std::vector<double> err_partial;  // sums of err over blocks of kReduceBlock
+  // The band next to the walls (Simulation::plan_wall_band): the fluid particles with a
+  // boundary neighbour, and those with their fluid neighbours, ascending.
+  std::vector<Index> wall_band, wall_reach;
   std::vector<double> p_over_rho2;   // p_i / rho_i^2 of fluid particles
   std::vector<double> pb_over_rho2;  // p_b / rho0^2 of boundary particles
   std::vector<double> ext_wsum;      // sum_f W_bf of each boundary particle (Eq. 25 denominator)

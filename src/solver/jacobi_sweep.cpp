@@ -171,4 +171,43 @@ void Simulation::sweep_range(Index begin, Index end, Index block, const Pressure
   }
 }
 
+// The band of smooth_wall_band: the fluid particles with a boundary neighbour and their
+// fluid neighbours; and the reach, the band with its fluid neighbours, whose accelerations
+// the band's updates read. Both ascending. (A band one hop narrower moved the largest
+// error to its edge; docs/performance.md, "Smoothing next to the walls".)
+void Simulation::plan_wall_band() {
+  const Index n = fluid_.size();
+  std::vector<std::uint8_t> wall(static_cast<size_t>(n)), band(static_cast<size_t>(n)), reach;
+  for (Index i = 0; i < n; ++i) wall[i] = fb_.count(i) > 0;
+  auto grow = [&](const std::vector<std::uint8_t>& from, std::vector<std::uint8_t>& to) {
+    to = from;
+    for (Index i = 0; i < n; ++i)
+      if (from[i])
+        for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) to[ff_.j[k]] = 1;
+  };
+  grow(wall, band);
+  grow(band, reach);
+  scratch_->wall_band.clear();
+  scratch_->wall_reach.clear();
+  for (Index i = 0; i < n; ++i) {
+    if (band[i]) scratch_->wall_band.push_back(i);
+    if (reach[i]) scratch_->wall_reach.push_back(i);
+  }
+}
+
+// One Jacobi iteration restricted to the band and the samples: Eq. 24 over the reach from
+// the current pressures, then Eq. 20, 21, 23 for the band and Eq. 21 for the samples. Reads
+// only accelerations computed before it writes, so the bits do not depend on the threads.
+void Simulation::smooth_wall_band(const PressureTerms& terms) {
+  PressureTerms t = terms;
+  t.chebyshev = 0.0;  // plain relaxed Jacobi, whatever the scheme around it
+  const std::vector<Index>& band = scratch_->wall_band;
+  const std::vector<Index>& reach = scratch_->wall_reach;
+  update_boundary_pressure();
+  parallel_for(static_cast<Index>(reach.size()),
+               [&](Index k) { scratch_->a_p[reach[k]] = pressure_acceleration_of(reach[k], t); });
+  parallel_for(static_cast<Index>(band.size()), [&](Index k) { jacobi_update_of(band[k], t); });
+  if (settings_.boundary_pressure == BoundaryPressure::Solved) jacobi_update_boundary(t);
+}
+
 }  // namespace sluice

@@ -74,6 +74,9 @@ struct SolverSettings {
   // Multilevel: the side of the cells that aggregate the pressures, in particle spacings,
   // in [2, 64] (coupled aggregates then lie within two cells of each other).
   double multilevel_cell = 6.0;
+  // Multilevel: Jacobi iterations on the fluid next to the walls and the samples after each
+  // coarse correction (Simulation::smooth_wall_band), in [0, 100]; 0: none.
+  int multilevel_wall_sweeps = 2;
   // Include in a_ii the dependence of the boundary pressure on p_i (mirroring: p_b = p_i
   // doubles the boundary part; extrapolation: p_b carries p_i with weight W_bi / sum W).
   // Off: Eq. 26 as printed, where the boundary enters d_ii once. See solve_pressure_iisph.

@@ -157,6 +157,8 @@ class Simulation {
   double jacobi_sweep(Index block,
                       const PressureTerms& t);  // Eq. 24, then 20, 21, 23 for all; returns the sum of Eq. 23
   void sweep_range(Index begin, Index end, Index block, const PressureTerms& t);
+  void plan_wall_band();                          // scratch wall_band, wall_reach
+  void smooth_wall_band(const PressureTerms& t);  // one Jacobi iteration on the band and the samples
   // The multilevel scheme's coarse level (solver/pressure/coarse_level.cpp).
   void aggregate_unknowns(CoarseLevel& cl) const;                                // the unknowns with p > 0 by cells
   void assemble_coarse_operator(const PressureTerms& t, CoarseLevel& cl) const;  // A_c = P^T A P

@@ -37,6 +37,7 @@ class MultilevelSolver final : public PressureSolverMethod {
       if (l == 1 || (avg > limits.tolerance_percent && (l - 1) % kCorrectionEvery == 0)) {
         if (l == 1) system.build_coarse_level();
         corrected = system.coarse_correction();
+        if (corrected) system.smooth_near_walls(system.settings().multilevel_wall_sweeps);
         corrections += corrected;
       }
     } while ((avg > limits.tolerance_percent || l < limits.min_iterations || corrected) &&

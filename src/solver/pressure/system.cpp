@@ -27,6 +27,13 @@ void PressureSystem::build_coarse_level() { sim_.build_coarse_level(terms_); }
 
 bool PressureSystem::coarse_correction() { return sim_.coarse_correction(terms_); }
 
+void PressureSystem::smooth_near_walls(int iterations) {
+  if (iterations <= 0) return;
+  if (!band_planned_) sim_.plan_wall_band();
+  band_planned_ = true;
+  for (int k = 0; k < iterations; ++k) sim_.smooth_wall_band(terms_);
+}
+
 void PressureSystem::save_previous_iterate() {
   sim_.scratch_->p_prev = sim_.fluid_.p;
   sim_.scratch_->pb_prev = sim_.boundary_.p;

@@ -36,12 +36,16 @@ class PressureSystem {
   // factorised (nothing changed).
   void build_coarse_level();
   bool coarse_correction();
+  // Jacobi iterations on the fluid next to the walls and the samples only (after
+  // McAdams et al. 2010's extra boundary smoothing); the band is planned on first use.
+  void smooth_near_walls(int iterations);
 
  private:
   Simulation& sim_;
   Simulation::PressureTerms terms_;
   Index block_;
   Index active_samples_;
+  bool band_planned_ = false;
 };
 
 }  // namespace sluice
