@@ -177,16 +177,18 @@ void Simulation::sweep_range(Index begin, Index end, Index block, const Pressure
 // error to its edge; docs/performance.md, "Smoothing next to the walls".)
 void Simulation::plan_wall_band() {
   const Index n = fluid_.size();
-  std::vector<std::uint8_t> wall(static_cast<size_t>(n)), band(static_cast<size_t>(n)), reach;
-  for (Index i = 0; i < n; ++i) wall[i] = fb_.count(i) > 0;
-  auto grow = [&](const std::vector<std::uint8_t>& from, std::vector<std::uint8_t>& to) {
-    to = from;
-    for (Index i = 0; i < n; ++i)
-      if (from[i])
-        for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) to[ff_.j[k]] = 1;
+  // Gathers over the (symmetric) fluid lists, each flag from the last: parallel, and the
+  // same lists as growing the set from the wall outwards.
+  std::vector<std::uint8_t> band(static_cast<size_t>(n)), reach(static_cast<size_t>(n));
+  auto near = [&](Index i, const std::vector<std::uint8_t>& in) {
+    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k)
+      if (in[ff_.j[k]]) return true;
+    return false;
   };
-  grow(wall, band);
-  grow(band, reach);
+  std::vector<std::uint8_t> wall(static_cast<size_t>(n));
+  parallel_for(n, [&](Index i) { wall[i] = fb_.count(i) > 0; });
+  parallel_for(n, [&](Index i) { band[i] = wall[i] || near(i, wall); });
+  parallel_for(n, [&](Index i) { reach[i] = band[i] || near(i, band); });
   scratch_->wall_band.clear();
   scratch_->wall_reach.clear();
   for (Index i = 0; i < n; ++i) {
