@@ -29,8 +29,9 @@ struct SolverScratch {
   std::vector<std::int8_t> sweep_lag;
   std::vector<Index> deferred;      // ascending
   std::vector<double> err_partial;  // sums of err over blocks of kReduceBlock
-  // The band next to the walls (Simulation::plan_wall_band): the fluid particles with a
-  // boundary neighbour, and those with their fluid neighbours, ascending.
+  // Next to the walls (Simulation::plan_wall_band): the band (the fluid particles with a
+  // boundary neighbour and their fluid neighbours) and its reach (the band and its fluid
+  // neighbours), ascending.
   std::vector<Index> wall_band, wall_reach;
   std::vector<double> p_over_rho2;   // p_i / rho_i^2 of fluid particles
   std::vector<double> pb_over_rho2;  // p_b / rho0^2 of boundary particles
