@@ -33,10 +33,11 @@ struct SolverScratch {
   // boundary neighbour and their fluid neighbours) and its reach (the band and its fluid
   // neighbours), ascending.
   std::vector<Index> wall_band, wall_reach;
-  std::vector<double> p_over_rho2;   // p_i / rho_i^2 of fluid particles
-  std::vector<double> pb_over_rho2;  // p_b / rho0^2 of boundary particles
-  std::vector<double> ext_wsum;      // sum_f W_bf of each boundary particle (Eq. 25 denominator)
-  std::vector<double> ext_gravity;   // g . sum_f rho_f x_bf W_bf (Eq. 25 hydrostatic term)
+  std::vector<std::uint8_t> wall_flag_a, wall_flag_b;  // plan_wall_band's flags
+  std::vector<double> p_over_rho2;                     // p_i / rho_i^2 of fluid particles
+  std::vector<double> pb_over_rho2;                    // p_b / rho0^2 of boundary particles
+  std::vector<double> ext_wsum;                        // sum_f W_bf of each boundary particle (Eq. 25 denominator)
+  std::vector<double> ext_gravity;                     // g . sum_f rho_f x_bf W_bf (Eq. 25 hydrostatic term)
   // Pressure boundaries (BoundaryPressure::Solved): each sample's source term and
   // diagonal, the counterparts of Eq. 19 and 22 for its density constraint.
   std::vector<double> bnd_s, bnd_aii;

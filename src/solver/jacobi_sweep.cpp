@@ -178,22 +178,27 @@ void Simulation::sweep_range(Index begin, Index end, Index block, const Pressure
 void Simulation::plan_wall_band() {
   const Index n = fluid_.size();
   // Gathers over the (symmetric) fluid lists, each flag from the last: parallel, and the
-  // same lists as growing the set from the wall outwards.
-  std::vector<std::uint8_t> band(static_cast<size_t>(n)), reach(static_cast<size_t>(n));
-  auto near = [&](Index i, const std::vector<std::uint8_t>& in) {
-    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k)
-      if (in[ff_.j[k]]) return true;
-    return false;
+  // same lists as growing the set from the wall outwards. Two flag arrays kept between
+  // steps (fresh ones would be faulted in every step): wall, then band, then reach.
+  std::vector<std::uint8_t>& a = scratch_->wall_flag_a;
+  std::vector<std::uint8_t>& b = scratch_->wall_flag_b;
+  a.resize(static_cast<size_t>(n));
+  b.resize(static_cast<size_t>(n));
+  auto grow = [&](const std::vector<std::uint8_t>& from, std::vector<std::uint8_t>& to) {
+    parallel_for(n, [&](Index i) {
+      bool in = from[i];
+      for (Index k = ff_.offset[i]; !in && k < ff_.offset[i + 1]; ++k) in = from[ff_.j[k]];
+      to[i] = in;
+    });
   };
-  std::vector<std::uint8_t> wall(static_cast<size_t>(n));
-  parallel_for(n, [&](Index i) { wall[i] = fb_.count(i) > 0; });
-  parallel_for(n, [&](Index i) { band[i] = wall[i] || near(i, wall); });
-  parallel_for(n, [&](Index i) { reach[i] = band[i] || near(i, band); });
+  parallel_for(n, [&](Index i) { a[i] = fb_.count(i) > 0; });
+  grow(a, b);  // b: the band
+  grow(b, a);  // a: its reach
   scratch_->wall_band.clear();
   scratch_->wall_reach.clear();
   for (Index i = 0; i < n; ++i) {
-    if (band[i]) scratch_->wall_band.push_back(i);
-    if (reach[i]) scratch_->wall_reach.push_back(i);
+    if (b[i]) scratch_->wall_band.push_back(i);
+    if (a[i]) scratch_->wall_reach.push_back(i);
   }
 }
 
