@@ -475,6 +475,12 @@ TEST(SceneSettings, PressureSolverChoices) {
   const std::string sweeps = error_of(text, {"solver.multilevel_wall_sweeps=101"});
   EXPECT_NE(sweeps.find("/solver/multilevel_wall_sweeps"), std::string::npos) << sweeps;
   EXPECT_NE(sweeps.find("101"), std::string::npos) << sweeps;
+  EXPECT_EQ(parse_scene(text, kFile).solver.pressure_stabilisation, 0.0);
+  EXPECT_EQ(parse_scene(text, kFile, {"solver.pressure_stabilisation=2"}).solver.pressure_stabilisation, 2.0);
+  const std::string kappa = error_of(text, {"solver.pressure_stabilisation=-1"});
+  EXPECT_NE(kappa.find("/solver/pressure_stabilisation: value -1 is out of range; must be in [0, 10]"),
+            std::string::npos)
+      << kappa;
   const std::string cell = error_of(text, {"solver.multilevel_cell=1.5"});
   EXPECT_NE(cell.find("/solver/multilevel_cell: value 1.5 is out of range; must be in [2, 64]"), std::string::npos)
       << cell;

@@ -127,8 +127,30 @@ Index Simulation::prepare_pressure_system(double dt) {
     fluid_.p[i] = p0;
     scratch_->p_over_rho2[i] = p0 * inv_rho2;
   });
+  if (s.pressure_stabilisation > 0.0) prepare_stabilisation();
 
   return active_samples;
+}
+
+// The mean offset x_j - x_i of each fluid particle's neighbours that the stabilisation's
+// mean reads (pressure_kernels.h): its fluid neighbours, and its samples where they carry a
+// pressure of their own.
+void Simulation::prepare_stabilisation() {
+  const Index n = fluid_.size();
+  const bool samples = pressure_terms(0.0).boundary_field;
+  scratch_->stab_offset.resize(n);
+  scratch_->stab_mean.resize(n);
+  parallel_for(n, [&](Index i) {
+    const Vec2 xi = fluid_.x[i];
+    Vec2 sum = Vec2::Zero();
+    Index count = ff_.count(i);
+    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) sum += fluid_.x[ff_.j[k]] - xi;
+    if (samples) {
+      for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) sum += boundary_.x[fb_.j[k]] - xi;
+      count += fb_.count(i);
+    }
+    scratch_->stab_offset[i] = count > 0 ? Vec2(sum / static_cast<double>(count)) : Vec2::Zero();
+  });
 }
 
 // The scheme that solves this step's PPE (solver/pressure/): made again when
@@ -216,15 +238,36 @@ double Simulation::sample_operator_of(Index b, const PressureTerms& t) const {
   return ap * (t.dt * t.mass);
 }
 
+// The stabilisation's term of a sample's row (pressure_kernels.h), with kSampleStabilisation
+// kappa: its fluid neighbours' q carried to the sample along grad q ~ -a_f / rho_f, so that
+// a linear field is left alone at a one-sided sample.
+double Simulation::sample_stabilisation_of(Index b, const PressureTerms& t) const {
+  const Index count = bf_.count(b);
+  if (count == 0) return 0.0;
+  const Vec2 xb = boundary_.x[b];
+  double sum = 0.0;
+  for (Index k = bf_.offset[b]; k < bf_.offset[b + 1]; ++k) {
+    const Index f = bf_.j[k];
+    sum += scratch_->p_over_rho2[f] - scratch_->a_p[f].dot(xb - fluid_.x[f]) / fluid_.rho[f];
+  }
+  const double rho0 = settings_.rest_density;
+  return kSampleStabilisation * t.stabilisation * scratch_->bnd_aii[b] * rho0 * rho0 *
+         (scratch_->pb_over_rho2[b] - sum / static_cast<double>(count));
+}
+
 // Eq. 21 for every boundary sample, from the accelerations a_p of the iteration (all
 // computed before: the sweep has finished), clamped at zero like the fluid's. Returns
 // the sum of the samples' predicted compression (Eq. 23) at these accelerations.
 double Simulation::jacobi_update_boundary(const PressureTerms& t) {
   const double inv_rho0_2 = 1.0 / (settings_.rest_density * settings_.rest_density);
   return parallel_sum(boundary_.size(), [&](Index b) {
-    const double abb = scratch_->bnd_aii[b];
+    double abb = scratch_->bnd_aii[b];
     if (abb == 0.0) return 0.0;  // no fluid neighbour: p_b stays 0
-    const double ap = sample_operator_of(b, t);
+    double ap = sample_operator_of(b, t);
+    if (t.stabilisation > 0.0) {
+      ap += sample_stabilisation_of(b, t);
+      abb *= 1.0 + kStabilisationDiagonal * kSampleStabilisation * t.stabilisation;
+    }
     double p = std::max(boundary_.p[b] + t.omega / abb * (scratch_->bnd_s[b] - ap), 0.0);
     if (t.chebyshev > 0.0) p = chebyshev_extrapolate(p, boundary_.p[b], scratch_->pb_prev[b], t.chebyshev);
     boundary_.p[b] = p;
@@ -247,13 +290,15 @@ Simulation::PressureTerms Simulation::pressure_terms(double dt) const {
       s.boundary_pressure == BoundaryPressure::Extrapolation || s.boundary_pressure == BoundaryPressure::Solved;
   t.gamma2 = s.gamma2;
   t.omega = omega_;
+  t.stabilisation = s.pressure_stabilisation;
   t.dt = dt;
   t.err_scale = 100.0 * dt / s.rest_density;
   return t;
 }
 
 void Simulation::compute_pressure_acceleration() {
-  const PressureTerms t = pressure_terms(0.0);
+  PressureTerms t = pressure_terms(0.0);
+  t.stabilisation = 0.0;  // the accelerations alone
   scratch_->a_p.resize(fluid_.size());
   parallel_for(fluid_.size(), [&](Index i) { scratch_->a_p[i] = pressure_acceleration_of(i, t); });
 }

@@ -22,6 +22,10 @@ struct SolverScratch {
   std::vector<double> grad_scale;  // c_i of the gradient correction (compute_density)
   std::vector<double> s;           // source term (Eq. 19)
   std::vector<double> err;         // predicted compression of Eq. 23 [%]
+  // Pressure stabilisation (stabilisation_of): the mean offset x_j - x_i of each particle's
+  // neighbours (fluid and samples), fixed within a step, and q_bar of the current iterate.
+  std::vector<Vec2> stab_offset;
+  std::vector<double> stab_mean;
   // Fused Jacobi sweep (Simulation::jacobi_sweep): the bounds of its ranges (one per
   // thread), for each particle the number of blocks after its own that its update
   // waits for (-1: deferred until every range is done), and the deferred particles.

@@ -118,8 +118,10 @@ std::int8_t Simulation::sweep_lag_of(Index i, Index jmin, Index jmax, Index bloc
 double Simulation::jacobi_sweep(Index block, const PressureTerms& t) {
   const Index n = fluid_.size();
   if (block == 0) {
-    // Two plain passes: all accelerations, then all updates (summed as they go).
-    compute_pressure_acceleration();
+    // Two plain passes: all accelerations (and the stabilisation's means), then all
+    // updates (summed as they go).
+    scratch_->a_p.resize(n);
+    parallel_for(n, [&](Index i) { scratch_->a_p[i] = pressure_acceleration_of(i, t); });
     return parallel_sum(n, [&](Index i) {
       jacobi_update_of(i, t);
       return scratch_->err[i];

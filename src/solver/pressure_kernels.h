@@ -8,6 +8,24 @@
 
 namespace sluice {
 
+// The pressure stabilisation (solver.pressure_stabilisation = kappa; issue 37 item 2). Eq. 24's
+// sum form gives a particle no force from its own pressure (sum_j grad W_ij = 0 inside the
+// fluid), so on a lattice rows k - 1 and k + 1 alone push row k: a pressure alternating row
+// by row, through the wall samples too, exerts no force, and Eq. 20 has it in its null
+// space (docs/performance.md, "Pressure at the floor"). Each row of the PPE gets
+//   kappa a_ii rho_i^2 (q_i - q_bar_i),  q = p / rho^2,
+// q_bar_i the mean of q over i's neighbours corrected by grad q ~ -a_i / rho_i (Eq. 24's own
+// acceleration) so that a linear field, the hydrostatic one among them, is left alone: the
+// compact Laplacian of Rhie & Chow's collocated grids (Brezzi & Pitkaranta's pressure
+// stabilisation), which sees the alternating pattern with eigenvalue about 1.5 kappa.
+// Samples get twice kappa: their mean is one-sided, over the fluid rows above them.
+inline constexpr double kSampleStabilisation = 2.0;
+// Share of kappa a_ii added to the diagonal that the relaxed update divides by: all of it
+// would slow the smooth modes (1 + kappa)-fold; 0.5 keeps the update stable on the
+// lattice's spectrum (omega (lambda_max + 1.5 kappa) / (1 + 0.5 kappa) < 2 for kappa <= 10
+// at omega = 0.5) and slows them by 1 + 0.5 kappa.
+inline constexpr double kStabilisationDiagonal = 0.5;
+
 [[gnu::always_inline]] inline Vec2 Simulation::pressure_acceleration_of(Index i, const PressureTerms& t) const {
   const std::vector<double>& pr = scratch_->p_over_rho2;
   const double pri = pr[i];
@@ -23,7 +41,28 @@ namespace sluice {
     }
     a -= t.gamma3_rho0 * ab;
   }
+  if (t.stabilisation > 0.0) scratch_->stab_mean[i] = stabilisation_mean_of(i, a, t);
   return a;
+}
+
+// q_bar_i of the stabilisation from the current pressures and i's acceleration a_i.
+inline double Simulation::stabilisation_mean_of(Index i, const Vec2& a_i, const PressureTerms& t) const {
+  const std::vector<double>& pr = scratch_->p_over_rho2;
+  double sum = 0.0;
+  Index count = ff_.count(i);
+  for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) sum += pr[ff_.j[k]];
+  if (t.boundary_field) {
+    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) sum += scratch_->pb_over_rho2[fb_.j[k]];
+    count += fb_.count(i);
+  }
+  if (count == 0) return pr[i];
+  return sum / static_cast<double>(count) + a_i.dot(scratch_->stab_offset[i]) / fluid_.rho[i];
+}
+
+// The stabilisation's term of fluid row i: kappa a_ii rho_i^2 (q_i - q_bar_i).
+inline double Simulation::stabilisation_of(Index i, const PressureTerms& t) const {
+  const double rho = fluid_.rho[i];
+  return t.stabilisation * scratch_->a_ii[i] * rho * rho * (scratch_->p_over_rho2[i] - scratch_->stab_mean[i]);
 }
 
 // One relaxed Jacobi update of particle i (Algorithm 2's second solver loop): (Ap)_i of
@@ -49,8 +88,13 @@ namespace sluice {
 }
 
 [[gnu::always_inline]] inline void Simulation::jacobi_update_of(Index i, const PressureTerms& t) {
-  const double ap = pressure_operator_of(i, t);
-  const double si = scratch_->s[i], aii = scratch_->a_ii[i];
+  double ap = pressure_operator_of(i, t);
+  const double si = scratch_->s[i];
+  double aii = scratch_->a_ii[i];
+  if (t.stabilisation > 0.0) {
+    ap += stabilisation_of(i, t);
+    aii *= 1.0 + kStabilisationDiagonal * t.stabilisation;
+  }
   double p = aii != 0.0 ? std::max(fluid_.p[i] + t.omega / aii * (si - ap), 0.0) : 0.0;
   if (t.chebyshev > 0.0) p = chebyshev_extrapolate(p, fluid_.p[i], scratch_->p_prev[i], t.chebyshev);
   fluid_.p[i] = p;

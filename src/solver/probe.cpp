@@ -69,13 +69,16 @@ void SolverProbe::apply(const std::vector<double>& p, const std::vector<double>&
       s.scratch_->pb_over_rho2[b] = pb[b] * inv_rho0_2;
     }
   s.update_boundary_pressure();
-  s.compute_pressure_acceleration();
   const Simulation::PressureTerms t = s.pressure_terms(dt_);
+  s.scratch_->a_p.resize(n);
+  for (Index i = 0; i < n; ++i) s.scratch_->a_p[i] = s.pressure_acceleration_of(i, t);  // and the stabilisation's means
+  const bool stabilised = t.stabilisation > 0.0;
   ap.assign(static_cast<size_t>(n), 0.0);
-  for (Index i = 0; i < n; ++i) ap[i] = s.pressure_operator_of(i, t);
+  for (Index i = 0; i < n; ++i) ap[i] = s.pressure_operator_of(i, t) + (stabilised ? s.stabilisation_of(i, t) : 0.0);
   apb.assign(static_cast<size_t>(nb), 0.0);
   if (solved)
-    for (Index b = 0; b < nb; ++b) apb[b] = s.sample_operator_of(b, t);
+    for (Index b = 0; b < nb; ++b)
+      apb[b] = s.sample_operator_of(b, t) + (stabilised ? s.sample_stabilisation_of(b, t) : 0.0);
 }
 
 }  // namespace sluice

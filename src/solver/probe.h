@@ -26,9 +26,17 @@ class SolverProbe {
   // (Ap) for the fluid pressures p and, with pressure boundaries, the samples' pressures
   // pb (ignored otherwise): Eq. 24 from these pressures (extrapolation, mirroring or zero
   // derive p_b from p), then Eq. 20 for each fluid particle into ap and each sample into
-  // apb. Leaves the simulation's pressures at p and pb.
+  // apb, with the pressure stabilisation's terms when it is on. Leaves the simulation's
+  // pressures at p and pb.
   void apply(const std::vector<double>& p, const std::vector<double>& pb, std::vector<double>& ap,
              std::vector<double>& apb);
+
+  // Sets solver.pressure_stabilisation = kappa for the prepared system (its neighbour
+  // offsets computed when kappa > 0), to compare the operator with and without it.
+  void set_pressure_stabilisation(double kappa) {
+    sim_.settings_.pressure_stabilisation = kappa;
+    if (kappa > 0.0) sim_.prepare_stabilisation();
+  }
 
   // The multilevel scheme's coarse level (solver/pressure/coarse_level.h) at the current
   // pressures, after prepare_pressure_system: the unknowns with p > 0 aggregated by cells,

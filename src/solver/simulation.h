@@ -142,7 +142,8 @@ class Simulation {
     double mass, c_gamma3, gamma3_rho0, gamma2, omega, dt, err_scale;
     // Chebyshev's weight of this iteration (chebyshev_weight); 0: plain relaxed Jacobi.
     double chebyshev = 0.0;
-    bool boundary_field;  // p_b from its own array (extrapolated or solved), not p_i or 0
+    double stabilisation = 0.0;  // kappa of stabilisation_of; 0: none
+    bool boundary_field;         // p_b from its own array (extrapolated or solved), not p_i or 0
   };
   PressureTerms pressure_terms(double dt) const;
   double sample_operator_of(Index b, const PressureTerms& t) const;      // (Ap)_b of a pressure-boundary sample
@@ -150,6 +151,10 @@ class Simulation {
   Vec2 pressure_acceleration_of(Index i, const PressureTerms& t) const;  // Eq. 24 for one particle
   double pressure_operator_of(Index i, const PressureTerms& t) const;    // Eq. 20: (Ap)_i from a_p
   void jacobi_update_of(Index i, const PressureTerms& t);                // Eq. 20, 21, 23 for one particle
+  double stabilisation_mean_of(Index i, const Vec2& a_i, const PressureTerms& t) const;  // q_bar_i
+  double stabilisation_of(Index i, const PressureTerms& t) const;                        // the fluid row's added term
+  double sample_stabilisation_of(Index b, const PressureTerms& t) const;                 // the sample row's added term
+  void prepare_stabilisation();                                                          // stab_offset
   Index plan_jacobi_sweep();  // block size (0: plain passes), ranges, lags, deferred particles
   Index jacobi_block_size() const;
   void plan_jacobi_ranges();  // the sweep's ranges

@@ -305,7 +305,11 @@ bool Simulation::coarse_correction(const PressureTerms& t) {
   const Index n = fluid_.size(), nb = boundary_.size();
   const bool samples = settings_.boundary_pressure == BoundaryPressure::Solved;
   update_boundary_pressure();
-  const PressureTerms t_acc = pressure_terms(0.0);  // as compute_pressure_acceleration
+  // As compute_pressure_acceleration, with the stabilisation's means for the residual. (A_c
+  // is P^T A P without the stabilisation: with its terms the 20k dam break went unstable;
+  // docs/performance.md, "The stabilisation as an option".)
+  PressureTerms t_acc = pressure_terms(0.0);
+  t_acc.stabilisation = t.stabilisation;
   std::vector<Vec2>& acc = scratch_->a_p;
   acc.resize(static_cast<size_t>(n));
   std::vector<double>& r = cl.residual;
@@ -326,7 +330,8 @@ bool Simulation::coarse_correction(const PressureTerms& t) {
 #pragma omp taskloop grainsize(kResidualGrain)
     for (Index i = 0; i < n; ++i) acc[i] = pressure_acceleration_of(i, t_acc);
 #pragma omp taskloop grainsize(kResidualGrain)
-    for (Index i = 0; i < n; ++i) r[i] = scratch_->s[i] - pressure_operator_of(i, t);
+    for (Index i = 0; i < n; ++i)
+      r[i] = scratch_->s[i] - pressure_operator_of(i, t) - (t.stabilisation > 0.0 ? stabilisation_of(i, t) : 0.0);
   }
   if (!cl.factorised) return false;
   cl.rc = Eigen::VectorXd::Zero(cl.aggregates);
@@ -334,7 +339,9 @@ bool Simulation::coarse_correction(const PressureTerms& t) {
     if (cl.aggregate[i] >= 0) cl.rc[cl.aggregate[i]] += r[i];
   if (samples)
     for (Index b = 0; b < nb; ++b)
-      if (cl.aggregate[n + b] >= 0) cl.rc[cl.aggregate[n + b]] += scratch_->bnd_s[b] - sample_operator_of(b, t);
+      if (cl.aggregate[n + b] >= 0)
+        cl.rc[cl.aggregate[n + b]] += scratch_->bnd_s[b] - sample_operator_of(b, t) -
+                                      (t.stabilisation > 0.0 ? sample_stabilisation_of(b, t) : 0.0);
   cl.ec = -cl.ldlt.solve(cl.rc);
   cl.ec -= cl.ldlt.solve(Eigen::VectorXd(cl.rc - cl.a_c * cl.ec));  // one refinement: A_c is not quite symmetric
   const double inv_rho0_2 = 1.0 / (settings_.rest_density * settings_.rest_density);
