@@ -132,15 +132,17 @@ Index Simulation::prepare_pressure_system(double dt) {
   return active_samples;
 }
 
-// The mean offset x_j - x_i of each fluid particle's neighbours that the stabilisation's
-// mean reads (pressure_kernels.h): its fluid neighbours, and its samples where they carry a
-// pressure of their own.
+// The rows the stabilisation acts on, the wall band (mark_wall_band), and the mean offset
+// x_j - x_i of their neighbours that its mean reads (pressure_kernels.h): the fluid
+// neighbours, and the samples where they carry a pressure of their own.
 void Simulation::prepare_stabilisation() {
   const Index n = fluid_.size();
   const bool samples = pressure_terms(0.0).boundary_field;
+  mark_wall_band(scratch_->stab_on, scratch_->stab_wall);
   scratch_->stab_offset.resize(n);
   scratch_->stab_mean.resize(n);
   parallel_for(n, [&](Index i) {
+    if (!scratch_->stab_on[i]) return;
     const Vec2 xi = fluid_.x[i];
     Vec2 sum = Vec2::Zero();
     Index count = ff_.count(i);

@@ -26,6 +26,7 @@ struct SolverScratch {
   // neighbours (fluid and samples), fixed within a step, and q_bar of the current iterate.
   std::vector<Vec2> stab_offset;
   std::vector<double> stab_mean;
+  std::vector<std::uint8_t> stab_on, stab_wall;  // the stabilised rows: the wall band (and scratch)
   // Fused Jacobi sweep (Simulation::jacobi_sweep): the bounds of its ranges (one per
   // thread), for each particle the number of blocks after its own that its update
   // waits for (-1: deferred until every range is done), and the deferred particles.

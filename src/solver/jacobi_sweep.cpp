@@ -173,29 +173,38 @@ void Simulation::sweep_range(Index begin, Index end, Index block, const Pressure
   }
 }
 
-// The band of smooth_wall_band: the fluid particles with a boundary neighbour and their
-// fluid neighbours; and the reach, the band with its fluid neighbours, whose accelerations
-// the band's updates read. Both ascending. (A band one hop narrower moved the largest
-// error to its edge; docs/performance.md, "Smoothing next to the walls".)
+// Flags `to` with the particles flagged in `from` and their fluid neighbours: a gather over
+// the (symmetric) fluid lists, parallel, the same set as growing it outwards.
+void Simulation::grow_by_neighbours(const std::vector<std::uint8_t>& from, std::vector<std::uint8_t>& to) const {
+  const Index n = fluid_.size();
+  to.resize(static_cast<size_t>(n));
+  parallel_for(n, [&](Index i) {
+    bool in = from[i];
+    for (Index k = ff_.offset[i]; !in && k < ff_.offset[i + 1]; ++k) in = from[ff_.j[k]];
+    to[i] = in;
+  });
+}
+
+// Flags the wall band: the fluid particles with a boundary neighbour and their fluid
+// neighbours (`wall` is scratch: those with a boundary neighbour).
+void Simulation::mark_wall_band(std::vector<std::uint8_t>& band, std::vector<std::uint8_t>& wall) const {
+  const Index n = fluid_.size();
+  wall.resize(static_cast<size_t>(n));
+  parallel_for(n, [&](Index i) { wall[i] = fb_.count(i) > 0; });
+  grow_by_neighbours(wall, band);
+}
+
+// The band of smooth_wall_band (mark_wall_band); and the reach, the band with its fluid
+// neighbours, whose accelerations the band's updates read. Both ascending. (A band one hop
+// narrower moved the largest error to its edge; docs/performance.md, "Smoothing next to
+// the walls".)
 void Simulation::plan_wall_band() {
   const Index n = fluid_.size();
-  // Gathers over the (symmetric) fluid lists, each flag from the last: parallel, and the
-  // same lists as growing the set from the wall outwards. Two flag arrays kept between
-  // steps (fresh ones would be faulted in every step): wall, then band, then reach.
+  // Two flag arrays kept between steps (fresh ones would be faulted in every step).
   std::vector<std::uint8_t>& a = scratch_->wall_flag_a;
   std::vector<std::uint8_t>& b = scratch_->wall_flag_b;
-  a.resize(static_cast<size_t>(n));
-  b.resize(static_cast<size_t>(n));
-  auto grow = [&](const std::vector<std::uint8_t>& from, std::vector<std::uint8_t>& to) {
-    parallel_for(n, [&](Index i) {
-      bool in = from[i];
-      for (Index k = ff_.offset[i]; !in && k < ff_.offset[i + 1]; ++k) in = from[ff_.j[k]];
-      to[i] = in;
-    });
-  };
-  parallel_for(n, [&](Index i) { a[i] = fb_.count(i) > 0; });
-  grow(a, b);  // b: the band
-  grow(b, a);  // a: its reach
+  mark_wall_band(b, a);      // b: the band
+  grow_by_neighbours(b, a);  // a: its reach
   scratch_->wall_band.clear();
   scratch_->wall_reach.clear();
   for (Index i = 0; i < n; ++i) {

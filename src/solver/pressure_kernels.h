@@ -12,13 +12,16 @@ namespace sluice {
 // sum form gives a particle no force from its own pressure (sum_j grad W_ij = 0 inside the
 // fluid), so on a lattice rows k - 1 and k + 1 alone push row k: a pressure alternating row
 // by row, through the wall samples too, exerts no force, and Eq. 20 has it in its null
-// space (docs/performance.md, "Pressure at the floor"). Each row of the PPE gets
+// space (docs/performance.md, "Pressure at the floor"). A row of the PPE gets
 //   kappa a_ii rho_i^2 (q_i - q_bar_i),  q = p / rho^2,
 // q_bar_i the mean of q over i's neighbours corrected by grad q ~ -a_i / rho_i (Eq. 24's own
 // acceleration) so that a linear field, the hydrostatic one among them, is left alone: the
 // compact Laplacian of Rhie & Chow's collocated grids (Brezzi & Pitkaranta's pressure
 // stabilisation), which sees the alternating pattern with eigenvalue about 1.5 kappa.
-// Samples get twice kappa: their mean is one-sided, over the fluid rows above them.
+// Only the wall band's rows (fluid with a boundary neighbour and their fluid neighbours)
+// and the samples': the mode is closed where the walls close it, and the fluid inside keeps
+// Eq. 20 (on the whole fluid, kappa = 3 let the shipped tank move at the default
+// tolerance; docs/performance.md). Samples get twice kappa: their mean is one-sided.
 inline constexpr double kSampleStabilisation = 2.0;
 // Share of kappa a_ii added to the diagonal that the relaxed update divides by: all of it
 // would slow the smooth modes (1 + kappa)-fold; 0.5 keeps the update stable on the
@@ -41,7 +44,7 @@ inline constexpr double kStabilisationDiagonal = 0.5;
     }
     a -= t.gamma3_rho0 * ab;
   }
-  if (t.stabilisation > 0.0) scratch_->stab_mean[i] = stabilisation_mean_of(i, a, t);
+  if (t.stabilisation > 0.0 && scratch_->stab_on[i]) scratch_->stab_mean[i] = stabilisation_mean_of(i, a, t);
   return a;
 }
 
@@ -59,8 +62,10 @@ inline double Simulation::stabilisation_mean_of(Index i, const Vec2& a_i, const 
   return sum / static_cast<double>(count) + a_i.dot(scratch_->stab_offset[i]) / fluid_.rho[i];
 }
 
-// The stabilisation's term of fluid row i: kappa a_ii rho_i^2 (q_i - q_bar_i).
+// The stabilisation's term of fluid row i: kappa a_ii rho_i^2 (q_i - q_bar_i) in the wall
+// band, 0 elsewhere.
 inline double Simulation::stabilisation_of(Index i, const PressureTerms& t) const {
+  if (!scratch_->stab_on[i]) return 0.0;
   const double rho = fluid_.rho[i];
   return t.stabilisation * scratch_->a_ii[i] * rho * rho * (scratch_->p_over_rho2[i] - scratch_->stab_mean[i]);
 }
@@ -91,7 +96,7 @@ inline double Simulation::stabilisation_of(Index i, const PressureTerms& t) cons
   double ap = pressure_operator_of(i, t);
   const double si = scratch_->s[i];
   double aii = scratch_->a_ii[i];
-  if (t.stabilisation > 0.0) {
+  if (t.stabilisation > 0.0 && scratch_->stab_on[i]) {
     ap += stabilisation_of(i, t);
     aii *= 1.0 + kStabilisationDiagonal * t.stabilisation;
   }

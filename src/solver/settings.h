@@ -77,9 +77,10 @@ struct SolverSettings {
   // Multilevel: Jacobi iterations on the fluid next to the walls and the samples after each
   // coarse correction (Simulation::smooth_wall_band), in [0, 100]; 0: none.
   int multilevel_wall_sweeps = 2;
-  // IISPH: kappa of the pressure stabilisation (Simulation::stabilisation_of), in [0, 10];
-  // 0: none, Eq. 20 as printed. The odd-even pattern of rows that Eq. 24's sum form cannot
-  // see gets kappa |a_ii| in its diagonal; linear pressure fields are left alone.
+  // IISPH: kappa of the pressure stabilisation of the wall band's and the samples' rows
+  // (Simulation::stabilisation_of), in [0, 10]; 0: none, Eq. 20 as printed. The odd-even
+  // pattern of rows that Eq. 24's sum form cannot see stops being a null mode; linear
+  // pressure fields are left alone.
   double pressure_stabilisation = 0.0;
   // Include in a_ii the dependence of the boundary pressure on p_i (mirroring: p_b = p_i
   // doubles the boundary part; extrapolation: p_b carries p_i with weight W_bi / sum W).

@@ -162,6 +162,8 @@ class Simulation {
   double jacobi_sweep(Index block,
                       const PressureTerms& t);  // Eq. 24, then 20, 21, 23 for all; returns the sum of Eq. 23
   void sweep_range(Index begin, Index end, Index block, const PressureTerms& t);
+  void grow_by_neighbours(const std::vector<std::uint8_t>& from, std::vector<std::uint8_t>& to) const;
+  void mark_wall_band(std::vector<std::uint8_t>& band, std::vector<std::uint8_t>& wall) const;
   void plan_wall_band();                          // scratch wall_band, wall_reach
   void smooth_wall_band(const PressureTerms& t);  // one Jacobi iteration on the band and the samples
   // The multilevel scheme's coarse level (solver/pressure/coarse_level.cpp).
