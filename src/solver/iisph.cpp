@@ -132,13 +132,14 @@ Index Simulation::prepare_pressure_system(double dt) {
   return active_samples;
 }
 
-// The rows the stabilisation acts on, the wall band (mark_wall_band), and the mean offset
-// x_j - x_i of their neighbours that its mean reads (pressure_kernels.h): the fluid
-// neighbours, and the samples where they carry a pressure of their own.
+// The rows the stabilisation acts on, the wall band (mark_wall_band; the multilevel wall
+// sweeps' plan_wall_band reuses it), and the mean offset x_j - x_i of their neighbours that
+// its mean reads (pressure_kernels.h): the fluid neighbours, and the samples where they
+// carry a pressure of their own.
 void Simulation::prepare_stabilisation() {
   const Index n = fluid_.size();
   const bool samples = pressure_terms(0.0).boundary_field;
-  mark_wall_band(scratch_->stab_on, scratch_->stab_wall);
+  mark_wall_band(scratch_->stab_on, scratch_->wall_flag_a);
   scratch_->stab_offset.resize(n);
   scratch_->stab_mean.resize(n);
   parallel_for(n, [&](Index i) {

@@ -26,7 +26,7 @@ struct SolverScratch {
   // neighbours (fluid and samples), fixed within a step, and q_bar of the current iterate.
   std::vector<Vec2> stab_offset;
   std::vector<double> stab_mean;
-  std::vector<std::uint8_t> stab_on, stab_wall;  // the stabilised rows: the wall band (and scratch)
+  std::vector<std::uint8_t> stab_on;  // the stabilised rows: the wall band (plan_wall_band reuses it)
   // Fused Jacobi sweep (Simulation::jacobi_sweep): the bounds of its ranges (one per
   // thread), for each particle the number of blocks after its own that its update
   // waits for (-1: deferred until every range is done), and the deferred particles.
@@ -38,11 +38,13 @@ struct SolverScratch {
   // boundary neighbour and their fluid neighbours) and its reach (the band and its fluid
   // neighbours), ascending.
   std::vector<Index> wall_band, wall_reach;
-  std::vector<std::uint8_t> wall_flag_a, wall_flag_b;  // plan_wall_band's flags
-  std::vector<double> p_over_rho2;                     // p_i / rho_i^2 of fluid particles
-  std::vector<double> pb_over_rho2;                    // p_b / rho0^2 of boundary particles
-  std::vector<double> ext_wsum;                        // sum_f W_bf of each boundary particle (Eq. 25 denominator)
-  std::vector<double> ext_gravity;                     // g . sum_f rho_f x_bf W_bf (Eq. 25 hydrostatic term)
+  // plan_wall_band's flags: the reach (and mark_wall_band's scratch), the band when the
+  // stabilisation has not marked it.
+  std::vector<std::uint8_t> wall_flag_a, wall_flag_b;
+  std::vector<double> p_over_rho2;   // p_i / rho_i^2 of fluid particles
+  std::vector<double> pb_over_rho2;  // p_b / rho0^2 of boundary particles
+  std::vector<double> ext_wsum;      // sum_f W_bf of each boundary particle (Eq. 25 denominator)
+  std::vector<double> ext_gravity;   // g . sum_f rho_f x_bf W_bf (Eq. 25 hydrostatic term)
   // Pressure boundaries (BoundaryPressure::Solved): each sample's source term and
   // diagonal, the counterparts of Eq. 19 and 22 for its density constraint.
   std::vector<double> bnd_s, bnd_aii;

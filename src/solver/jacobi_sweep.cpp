@@ -194,22 +194,33 @@ void Simulation::mark_wall_band(std::vector<std::uint8_t>& band, std::vector<std
   grow_by_neighbours(wall, band);
 }
 
-// The band of smooth_wall_band (mark_wall_band); and the reach, the band with its fluid
+// This step's wall band (mark_wall_band) as flags: the stabilisation's rows when it is on,
+// which prepare_stabilisation marked at the step's set-up, else marked here into
+// wall_flag_b. (Flag arrays are kept between steps: fresh ones would be faulted in every
+// step.)
+const std::vector<std::uint8_t>& Simulation::wall_band_flags() {
+  if (settings_.pressure_stabilisation > 0.0) {
+    SLUICE_ASSERT(scratch_->stab_on.size() == static_cast<size_t>(fluid_.size()), "the stabilisation's band is marked");
+    return scratch_->stab_on;
+  }
+  mark_wall_band(scratch_->wall_flag_b, scratch_->wall_flag_a);
+  return scratch_->wall_flag_b;
+}
+
+// The band of smooth_wall_band (wall_band_flags); and the reach, the band with its fluid
 // neighbours, whose accelerations the band's updates read. Both ascending. (A band one hop
 // narrower moved the largest error to its edge; docs/performance.md, "Smoothing next to
 // the walls".)
 void Simulation::plan_wall_band() {
   const Index n = fluid_.size();
-  // Two flag arrays kept between steps (fresh ones would be faulted in every step).
-  std::vector<std::uint8_t>& a = scratch_->wall_flag_a;
-  std::vector<std::uint8_t>& b = scratch_->wall_flag_b;
-  mark_wall_band(b, a);      // b: the band
-  grow_by_neighbours(b, a);  // a: its reach
+  const std::vector<std::uint8_t>& band = wall_band_flags();
+  std::vector<std::uint8_t>& reach = scratch_->wall_flag_a;
+  grow_by_neighbours(band, reach);
   scratch_->wall_band.clear();
   scratch_->wall_reach.clear();
   for (Index i = 0; i < n; ++i) {
-    if (b[i]) scratch_->wall_band.push_back(i);
-    if (a[i]) scratch_->wall_reach.push_back(i);
+    if (band[i]) scratch_->wall_band.push_back(i);
+    if (reach[i]) scratch_->wall_reach.push_back(i);
   }
 }
 

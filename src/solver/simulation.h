@@ -164,8 +164,9 @@ class Simulation {
   void sweep_range(Index begin, Index end, Index block, const PressureTerms& t);
   void grow_by_neighbours(const std::vector<std::uint8_t>& from, std::vector<std::uint8_t>& to) const;
   void mark_wall_band(std::vector<std::uint8_t>& band, std::vector<std::uint8_t>& wall) const;
-  void plan_wall_band();                          // scratch wall_band, wall_reach
-  void smooth_wall_band(const PressureTerms& t);  // one Jacobi iteration on the band and the samples
+  const std::vector<std::uint8_t>& wall_band_flags();  // this step's band, marked once
+  void plan_wall_band();                               // scratch wall_band, wall_reach
+  void smooth_wall_band(const PressureTerms& t);       // one Jacobi iteration on the band and the samples
   // The multilevel scheme's coarse level (solver/pressure/coarse_level.cpp).
   void aggregate_unknowns(CoarseLevel& cl) const;                                // the unknowns with p > 0 by cells
   void assemble_coarse_operator(const PressureTerms& t, CoarseLevel& cl) const;  // A_c = P^T A P
