@@ -302,6 +302,12 @@ Simulation::PressureTerms Simulation::pressure_terms(double dt) const {
 void Simulation::compute_pressure_acceleration() {
   PressureTerms t = pressure_terms(0.0);
   t.stabilisation = 0.0;  // the accelerations alone
+  compute_pressure_acceleration(t);
+}
+
+// Eq. 24 for every fluid particle with the sweep's terms t: with the stabilisation on, also
+// the means of its rows (stab_mean) that the updates of Eq. 20 then read.
+void Simulation::compute_pressure_acceleration(const PressureTerms& t) {
   scratch_->a_p.resize(fluid_.size());
   parallel_for(fluid_.size(), [&](Index i) { scratch_->a_p[i] = pressure_acceleration_of(i, t); });
 }

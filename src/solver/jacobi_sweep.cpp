@@ -120,8 +120,7 @@ double Simulation::jacobi_sweep(Index block, const PressureTerms& t) {
   if (block == 0) {
     // Two plain passes: all accelerations (and the stabilisation's means), then all
     // updates (summed as they go).
-    scratch_->a_p.resize(n);
-    parallel_for(n, [&](Index i) { scratch_->a_p[i] = pressure_acceleration_of(i, t); });
+    compute_pressure_acceleration(t);
     return parallel_sum(n, [&](Index i) {
       jacobi_update_of(i, t);
       return scratch_->err[i];

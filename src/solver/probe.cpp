@@ -70,8 +70,7 @@ void SolverProbe::apply(const std::vector<double>& p, const std::vector<double>&
     }
   s.update_boundary_pressure();
   const Simulation::PressureTerms t = s.pressure_terms(dt_);
-  s.scratch_->a_p.resize(n);
-  for (Index i = 0; i < n; ++i) s.scratch_->a_p[i] = s.pressure_acceleration_of(i, t);  // and the stabilisation's means
+  s.compute_pressure_acceleration(t);  // and the stabilisation's means
   const bool stabilised = t.stabilisation > 0.0;
   ap.assign(static_cast<size_t>(n), 0.0);
   for (Index i = 0; i < n; ++i) ap[i] = s.pressure_operator_of(i, t) + (stabilised ? s.stabilisation_of(i, t) : 0.0);

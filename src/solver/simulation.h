@@ -146,6 +146,7 @@ class Simulation {
     bool boundary_field;         // p_b from its own array (extrapolated or solved), not p_i or 0
   };
   PressureTerms pressure_terms(double dt) const;
+  void compute_pressure_acceleration(const PressureTerms& t);            // Eq. 24 -> a_p (and stab_mean)
   double sample_operator_of(Index b, const PressureTerms& t) const;      // (Ap)_b of a pressure-boundary sample
   double jacobi_update_boundary(const PressureTerms& t);                 // Eq. 21 for every boundary sample's p_b
   Vec2 pressure_acceleration_of(Index i, const PressureTerms& t) const;  // Eq. 24 for one particle
