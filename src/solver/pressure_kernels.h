@@ -29,37 +29,50 @@ inline constexpr double kSampleStabilisation = 2.0;
 // at omega = 0.5) and slows them by 1 + 0.5 kappa.
 inline constexpr double kStabilisationDiagonal = 0.5;
 
+// Eq. 24 for particle i; in a stabilised row also the mean of the stabilisation
+// (stab_mean), from q of the neighbours summed in Eq. 24's own loops.
 [[gnu::always_inline]] inline Vec2 Simulation::pressure_acceleration_of(Index i, const PressureTerms& t) const {
+  double q_sum = 0.0;
+  if (!(t.stabilisation > 0.0 && scratch_->stab_on[i])) return eq24_of<false>(i, t, q_sum);
+  const Vec2 a = eq24_of<true>(i, t, q_sum);
+  scratch_->stab_mean[i] = stabilisation_mean_of(i, a, q_sum, t);
+  return a;
+}
+
+// Eq. 24 for particle i; with kSumQ also adds to q_sum the q = p / rho^2 of its neighbours
+// that the stabilisation's mean reads (fluid, then samples where they carry a pressure of
+// their own), in the order of the pairs: one pass over them instead of two.
+template <bool kSumQ>
+[[gnu::always_inline]] inline Vec2 Simulation::eq24_of(Index i, const PressureTerms& t, double& q_sum) const {
   const std::vector<double>& pr = scratch_->p_over_rho2;
   const double pri = pr[i];
   Vec2 a = Vec2::Zero();
-  for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) a += (pri + pr[ff_.j[k]]) * ff_.grad[k].cast<double>();
+  for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
+    const double q = pr[ff_.j[k]];
+    a += (pri + q) * ff_.grad[k].cast<double>();
+    if constexpr (kSumQ) q_sum += q;
+  }
   a *= -t.mass;
   a -= (t.c_gamma3 * pri) * scratch_->grad_b[i];
   if (t.boundary_field) {
     Vec2 ab = Vec2::Zero();
     for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
       const Index b = fb_.j[k];
-      ab += (boundary_.volume[b] * scratch_->pb_over_rho2[b]) * fb_.grad[k].cast<double>();
+      const double q = scratch_->pb_over_rho2[b];
+      ab += (boundary_.volume[b] * q) * fb_.grad[k].cast<double>();
+      if constexpr (kSumQ) q_sum += q;
     }
     a -= t.gamma3_rho0 * ab;
   }
-  if (t.stabilisation > 0.0 && scratch_->stab_on[i]) scratch_->stab_mean[i] = stabilisation_mean_of(i, a, t);
   return a;
 }
 
-// q_bar_i of the stabilisation from the current pressures and i's acceleration a_i.
-inline double Simulation::stabilisation_mean_of(Index i, const Vec2& a_i, const PressureTerms& t) const {
-  const std::vector<double>& pr = scratch_->p_over_rho2;
-  double sum = 0.0;
-  Index count = ff_.count(i);
-  for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) sum += pr[ff_.j[k]];
-  if (t.boundary_field) {
-    for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) sum += scratch_->pb_over_rho2[fb_.j[k]];
-    count += fb_.count(i);
-  }
-  if (count == 0) return pr[i];
-  return sum / static_cast<double>(count) + a_i.dot(scratch_->stab_offset[i]) / fluid_.rho[i];
+// q_bar_i of the stabilisation from q_sum, the sum of q over i's neighbours (eq24_of), and
+// i's acceleration a_i.
+inline double Simulation::stabilisation_mean_of(Index i, const Vec2& a_i, double q_sum, const PressureTerms& t) const {
+  const Index count = ff_.count(i) + (t.boundary_field ? fb_.count(i) : 0);
+  if (count == 0) return scratch_->p_over_rho2[i];
+  return q_sum / static_cast<double>(count) + a_i.dot(scratch_->stab_offset[i]) / fluid_.rho[i];
 }
 
 // The stabilisation's term of fluid row i: kappa a_ii rho_i^2 (q_i - q_bar_i) in the wall

@@ -152,10 +152,12 @@ class Simulation {
   Vec2 pressure_acceleration_of(Index i, const PressureTerms& t) const;  // Eq. 24 for one particle
   double pressure_operator_of(Index i, const PressureTerms& t) const;    // Eq. 20: (Ap)_i from a_p
   void jacobi_update_of(Index i, const PressureTerms& t);                // Eq. 20, 21, 23 for one particle
-  double stabilisation_mean_of(Index i, const Vec2& a_i, const PressureTerms& t) const;  // q_bar_i
-  double stabilisation_of(Index i, const PressureTerms& t) const;                        // the fluid row's added term
-  double sample_stabilisation_of(Index b, const PressureTerms& t) const;                 // the sample row's added term
-  void prepare_stabilisation();                                                          // stab_offset
+  template <bool kSumQ>  // Eq. 24 for one particle; kSumQ: and its neighbours' p / rho^2 summed
+  Vec2 eq24_of(Index i, const PressureTerms& t, double& q_sum) const;
+  double stabilisation_mean_of(Index i, const Vec2& a_i, double q_sum, const PressureTerms& t) const;  // q_bar_i
+  double stabilisation_of(Index i, const PressureTerms& t) const;         // the fluid row's added term
+  double sample_stabilisation_of(Index b, const PressureTerms& t) const;  // the sample row's added term
+  void prepare_stabilisation();                                           // stab_offset
   Index plan_jacobi_sweep();  // block size (0: plain passes), ranges, lags, deferred particles
   Index jacobi_block_size() const;
   void plan_jacobi_ranges();  // the sweep's ranges
