@@ -33,7 +33,7 @@ inline constexpr double kStabilisationDiagonal = 0.5;
 // (stab_mean), from q of the neighbours summed in Eq. 24's own loops.
 [[gnu::always_inline]] inline Vec2 Simulation::pressure_acceleration_of(Index i, const PressureTerms& t) const {
   double q_sum = 0.0;
-  if (!(t.stabilisation > 0.0 && scratch_->stab_on[i])) return eq24_of<false>(i, t, q_sum);
+  if (!stabilised_row(i, t)) return eq24_of<false>(i, t, q_sum);
   const Vec2 a = eq24_of<true>(i, t, q_sum);
   scratch_->stab_mean[i] = stabilisation_mean_of(i, a, q_sum, t);
   return a;
@@ -75,10 +75,15 @@ inline double Simulation::stabilisation_mean_of(Index i, const Vec2& a_i, double
   return q_sum / static_cast<double>(count) + a_i.dot(scratch_->stab_offset[i]) / fluid_.rho[i];
 }
 
-// The stabilisation's term of fluid row i: kappa a_ii rho_i^2 (q_i - q_bar_i) in the wall
-// band, 0 elsewhere.
+// Whether fluid row i carries the stabilisation's term: kappa > 0 and i in the wall band.
+// Callers test it once per row: stabilisation_of and stab_mean serve these rows only.
+inline bool Simulation::stabilised_row(Index i, const PressureTerms& t) const {
+  return t.stabilisation > 0.0 && scratch_->stab_on[i];
+}
+
+// The stabilisation's term of a stabilised row i (stabilised_row): kappa a_ii rho_i^2
+// (q_i - q_bar_i).
 inline double Simulation::stabilisation_of(Index i, const PressureTerms& t) const {
-  if (!scratch_->stab_on[i]) return 0.0;
   const double rho = fluid_.rho[i];
   return t.stabilisation * scratch_->a_ii[i] * rho * rho * (scratch_->p_over_rho2[i] - scratch_->stab_mean[i]);
 }
@@ -109,7 +114,7 @@ inline double Simulation::stabilisation_of(Index i, const PressureTerms& t) cons
   double ap = pressure_operator_of(i, t);
   const double si = scratch_->s[i];
   double aii = scratch_->a_ii[i];
-  if (t.stabilisation > 0.0 && scratch_->stab_on[i]) {
+  if (stabilised_row(i, t)) {
     ap += stabilisation_of(i, t);
     aii *= 1.0 + kStabilisationDiagonal * t.stabilisation;
   }

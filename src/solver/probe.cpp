@@ -73,7 +73,8 @@ void SolverProbe::apply(const std::vector<double>& p, const std::vector<double>&
   s.compute_pressure_acceleration(t);  // and the stabilisation's means
   const bool stabilised = t.stabilisation > 0.0;
   ap.assign(static_cast<size_t>(n), 0.0);
-  for (Index i = 0; i < n; ++i) ap[i] = s.pressure_operator_of(i, t) + (stabilised ? s.stabilisation_of(i, t) : 0.0);
+  for (Index i = 0; i < n; ++i)
+    ap[i] = s.pressure_operator_of(i, t) + (s.stabilised_row(i, t) ? s.stabilisation_of(i, t) : 0.0);
   apb.assign(static_cast<size_t>(nb), 0.0);
   if (solved)
     for (Index b = 0; b < nb; ++b)

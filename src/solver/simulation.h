@@ -155,6 +155,7 @@ class Simulation {
   template <bool kSumQ>  // Eq. 24 for one particle; kSumQ: and its neighbours' p / rho^2 summed
   Vec2 eq24_of(Index i, const PressureTerms& t, double& q_sum) const;
   double stabilisation_mean_of(Index i, const Vec2& a_i, double q_sum, const PressureTerms& t) const;  // q_bar_i
+  bool stabilised_row(Index i, const PressureTerms& t) const;             // kappa > 0 and i in the wall band
   double stabilisation_of(Index i, const PressureTerms& t) const;         // the fluid row's added term
   double sample_stabilisation_of(Index b, const PressureTerms& t) const;  // the sample row's added term
   void prepare_stabilisation();                                           // stab_offset

@@ -331,7 +331,7 @@ bool Simulation::coarse_correction(const PressureTerms& t) {
     for (Index i = 0; i < n; ++i) acc[i] = pressure_acceleration_of(i, t_acc);
 #pragma omp taskloop grainsize(kResidualGrain)
     for (Index i = 0; i < n; ++i)
-      r[i] = scratch_->s[i] - pressure_operator_of(i, t) - (t.stabilisation > 0.0 ? stabilisation_of(i, t) : 0.0);
+      r[i] = scratch_->s[i] - pressure_operator_of(i, t) - (stabilised_row(i, t) ? stabilisation_of(i, t) : 0.0);
   }
   if (!cl.factorised) return false;
   cl.rc = Eigen::VectorXd::Zero(cl.aggregates);
