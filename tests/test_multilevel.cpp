@@ -148,11 +148,12 @@ TEST(Multilevel, IterationsDoNotGrowWithTheDepth) {
 // fluid next to the walls and the samples get solver.multilevel_wall_sweeps Jacobi
 // iterations of their own. The largest predicted compression of a step, which sits in the
 // bottom row of the surge (docs/performance.md, "Smoothing next to the walls"), falls on
-// average over the steps, at no more iterations.
+// average over the steps, at no more iterations. Without the stabilisation, which lowers
+// that error on its own (0.2016 % without wall sweeps at its default kappa 1, 0.393 % at 0).
 TEST(Multilevel, WallSweepsLowerTheLargestErrorAtTheFloor) {
   auto run = [&](int sweeps, double& mean_largest, double& iterations) {
     Simulation sim(scene_from_json(R"({"spacing": 0.02,
-      "solver": {"pressure_solver": "multilevel", "multilevel_wall_sweeps": )" +
+      "solver": {"pressure_solver": "multilevel", "pressure_stabilisation": 0, "multilevel_wall_sweeps": )" +
                                    std::to_string(sweeps) + R"(},
       "time": {"duration": 0.4, "fps": 10, "dt": 1e-3},
       "fluid": [{"shape": "rectangle", "min": [0, 0], "max": [0.5, 1]}],

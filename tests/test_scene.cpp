@@ -475,8 +475,22 @@ TEST(SceneSettings, PressureSolverChoices) {
   const std::string sweeps = error_of(text, {"solver.multilevel_wall_sweeps=101"});
   EXPECT_NE(sweeps.find("/solver/multilevel_wall_sweeps"), std::string::npos) << sweeps;
   EXPECT_NE(sweeps.find("101"), std::string::npos) << sweeps;
-  EXPECT_EQ(parse_scene(text, kFile).solver.pressure_stabilisation, 0.0);
-  EXPECT_EQ(parse_scene(text, kFile, {"solver.pressure_stabilisation=2"}).solver.pressure_stabilisation, 2.0);
+  // The stabilisation: absent or null, the solver's own kappa (1 with multilevel, else 0).
+  const Scene plain = parse_scene(text, kFile);
+  EXPECT_EQ(stabilisation_kappa(plain.solver), 0.0);
+  EXPECT_TRUE(plain.resolved["solver"]["pressure_stabilisation"].is_null());
+  EXPECT_EQ(stabilisation_kappa(m.solver), kMultilevelStabilisation);
+  EXPECT_EQ(
+      stabilisation_kappa(
+          parse_scene(text, kFile, {"solver.pressure_solver=multilevel", "solver.pressure_stabilisation=null"}).solver),
+      1.0);
+  const Scene two = parse_scene(text, kFile, {"solver.pressure_solver=multilevel", "solver.pressure_stabilisation=2"});
+  EXPECT_EQ(stabilisation_kappa(two.solver), 2.0);
+  EXPECT_EQ(two.resolved["solver"]["pressure_stabilisation"], 2.0);
+  EXPECT_EQ(
+      stabilisation_kappa(
+          parse_scene(text, kFile, {"solver.pressure_solver=multilevel", "solver.pressure_stabilisation=0"}).solver),
+      0.0);
   const std::string kappa = error_of(text, {"solver.pressure_stabilisation=-1"});
   EXPECT_NE(kappa.find("/solver/pressure_stabilisation: value -1 is out of range; must be in [0, 10]"),
             std::string::npos)

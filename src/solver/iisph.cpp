@@ -127,7 +127,7 @@ Index Simulation::prepare_pressure_system(double dt) {
     fluid_.p[i] = p0;
     scratch_->p_over_rho2[i] = p0 * inv_rho2;
   });
-  if (s.pressure_stabilisation > 0.0) prepare_stabilisation();
+  if (stabilisation_kappa(s) > 0.0) prepare_stabilisation();
 
   return active_samples;
 }
@@ -293,7 +293,7 @@ Simulation::PressureTerms Simulation::pressure_terms(double dt) const {
       s.boundary_pressure == BoundaryPressure::Extrapolation || s.boundary_pressure == BoundaryPressure::Solved;
   t.gamma2 = s.gamma2;
   t.omega = omega_;
-  t.stabilisation = s.pressure_stabilisation;
+  t.stabilisation = stabilisation_kappa(s);
   t.dt = dt;
   t.err_scale = 100.0 * dt / s.rest_density;
   return t;

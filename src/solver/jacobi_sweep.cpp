@@ -198,7 +198,7 @@ void Simulation::mark_wall_band(std::vector<std::uint8_t>& band, std::vector<std
 // wall_flag_b. (Flag arrays are kept between steps: fresh ones would be faulted in every
 // step.)
 const std::vector<std::uint8_t>& Simulation::wall_band_flags() {
-  if (settings_.pressure_stabilisation > 0.0) {
+  if (stabilisation_kappa(settings_) > 0.0) {
     SLUICE_ASSERT(scratch_->stab_on.size() == static_cast<size_t>(fluid_.size()), "the stabilisation's band is marked");
     return scratch_->stab_on;
   }

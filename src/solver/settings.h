@@ -80,8 +80,8 @@ struct SolverSettings {
   // IISPH: kappa of the pressure stabilisation of the wall band's and the samples' rows
   // (Simulation::stabilisation_of), in [0, 10]; 0: none, Eq. 20 as printed. The odd-even
   // pattern of rows that Eq. 24's sum form cannot see stops being a null mode; linear
-  // pressure fields are left alone.
-  double pressure_stabilisation = 0.0;
+  // pressure fields are left alone. Negative: the solver's own (stabilisation_kappa).
+  double pressure_stabilisation = -1.0;
   // Include in a_ii the dependence of the boundary pressure on p_i (mirroring: p_b = p_i
   // doubles the boundary part; extrapolation: p_b carries p_i with weight W_bi / sum W).
   // Off: Eq. 26 as printed, where the boundary enters d_ii once. See solve_pressure_iisph.
@@ -117,6 +117,18 @@ struct TimeSettings {
 
 // WCSPH's acoustic limit (Monaghan 1992): dt <= kAcousticCfl h / (c + v_max).
 constexpr double kAcousticCfl = 0.4;
+
+// The multilevel solve's own kappa: its coarse operator leaves the stabilisation out, and
+// above 1 the corrections overshoot next to the walls (kappa 2 moves the shipped tank at
+// tolerance 0.03 % and the thin plate; docs/performance.md, "The stabilisation's default
+// with the multilevel solve"). Jacobi and Chebyshev pay for it in iterations: 0.
+constexpr double kMultilevelStabilisation = 1.0;
+
+// The kappa a solve uses: the scene's, or the solver's own.
+inline double stabilisation_kappa(const SolverSettings& s) {
+  if (s.pressure_stabilisation >= 0.0) return s.pressure_stabilisation;
+  return s.pressure_solver == PressureSolver::Multilevel ? kMultilevelStabilisation : 0.0;
+}
 
 // Limits of the instability detector: a run stops with a message when one is exceeded.
 struct StabilityLimits {
