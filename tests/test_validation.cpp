@@ -267,5 +267,20 @@ TEST(ValidateCommand, ThinPlate) {
   expect_verdict(dir, r, {"iisph", "wcsph"}, {{"thin_plate.csv", 2}});
 }
 
+// The plate sweep (issue 35 item 3), one case for 0.1 s (the default: 30 cases of 2 s per
+// solver): a row per solver, its CSV, and a case name that is not one of the sweep's is a
+// flag error (exit 1, nothing run) naming the form of the allowed ones.
+TEST(ValidateCommand, PlateSweep) {
+  test::CaseDir dir;
+  const test::Result r =
+      run_validate(dir, {"plate-sweep", "--case", "piercing_30deg_x+0.4h", "--set", "time.duration=0.1"});
+  expect_verdict(dir, r, {"iisph  piercing_30deg_x+0.4h", "wcsph  piercing_30deg_x+0.4h"}, {{"plate_sweep.csv", 2}});
+  test::CaseDir bad;
+  const test::Result e = run_validate(bad, {"plate-sweep", "--case", "sideways"});
+  EXPECT_EQ(e.status, 1);
+  EXPECT_NE(e.err.find("--case sideways: a case name such as submerged_30deg_x+0.4h"), std::string::npos) << e.err;
+  EXPECT_FALSE(std::filesystem::exists(bad.work() / "renders" / "validation" / "plate_sweep.csv"));
+}
+
 }  // namespace
 }  // namespace sluice

@@ -160,3 +160,49 @@ TEST(WallPressure, StabilisedBottomRowConvergesAtEveryTolerance) {
 
 }  // namespace
 }  // namespace sluice
+
+namespace sluice {
+namespace {
+
+// Issue 35 item 3: a one-layer plate on a column of the fluid lattice in still water
+// (scenes/hard/thin_plate.json without its settling) starts at rest density on both
+// sides: its samples, whose wall share is what of their support the fluid leaves (their
+// own row's, Simulation::compute_sample_wall_shares), and the fluid next to them, whose
+// boundary volume is then a lattice cell. Before: samples 13 % over rho0, the fluid
+// next to the plate 3.7 % (cubic spline).
+TEST(WallPressure, OneLayerPlateStartsAtRestDensity) {
+  for (const char* kernel : {"cubic_spline", "wendland_c2"}) {
+    SCOPED_TRACE(kernel);
+    const Scene scene = load_scene(std::string(SLUICE_SOURCE_DIR) + "/scenes/hard/thin_plate.json",
+                                   {"time.settle=0", std::string("solver.kernel=") + kernel});
+    Simulation sim(scene);
+    SolverProbe probe(sim);
+    probe.prepare_pressure_system(1e-3);
+    const double rho0 = scene.solver.rest_density, h = scene.spacing, x_plate = 0.405;
+    const auto mid = [](const Vec2& x) { return x.y() > 0.13 && x.y() < 0.37; };  // away from the plate's ends
+    const std::vector<double> rho_b = probe.sample_density();
+    double worst_sample = 0, worst_fluid = 0;
+    int samples = 0, fluid = 0;
+    for (Index b = 0; b < sim.boundary().size(); ++b) {
+      if (sim.boundary().object[b] != 1 || !mid(sim.boundary().x[b])) continue;
+      ++samples;
+      worst_sample = std::max(worst_sample, std::abs(rho_b[b] / rho0 - 1));
+    }
+    for (Index i = 0; i < sim.fluid().size(); ++i) {
+      const Vec2 x = sim.fluid().x[i];
+      if (std::abs(x.x() - x_plate) > 1.5 * h || !mid(x)) continue;
+      ++fluid;
+      worst_fluid = std::max(worst_fluid, std::abs(sim.fluid().rho[i] / rho0 - 1));
+    }
+    std::printf(
+        "[ measured ] %s: %d plate samples within %.3f %% of rho0, %d fluid particles next to it within %.3f %%\n",
+        kernel, samples, 100 * worst_sample, fluid, 100 * worst_fluid);
+    EXPECT_GT(samples, 20);
+    EXPECT_GT(fluid, 40);
+    EXPECT_LE(worst_sample, 0.005);
+    EXPECT_LE(worst_fluid, 0.005);
+  }
+}
+
+}  // namespace
+}  // namespace sluice

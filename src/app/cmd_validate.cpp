@@ -10,9 +10,9 @@ Command add_validate(CLI::App& app) {
   CLI::App* validatecmd = app.add_subcommand(
       "validate",
       "Validation against known answers: hydrostatic pressure, Martin & Moyce's dam break, Monaghan's elliptical drop");
-  validatecmd->add_option("what", val->what, "hydrostatic, dam-break, elliptical-drop or thin-plate")
+  validatecmd->add_option("what", val->what, "hydrostatic, dam-break, elliptical-drop, thin-plate or plate-sweep")
       ->required()
-      ->check(CLI::IsMember({"hydrostatic", "dam-break", "elliptical-drop", "thin-plate"}));
+      ->check(CLI::IsMember({"hydrostatic", "dam-break", "elliptical-drop", "thin-plate", "plate-sweep"}));
   validatecmd->add_option(
       "--scene", val->scene,
       "Scene file (default scenes/validation/hydrostatic.json, dam_break_martin_moyce.json or elliptical_drop.json)");
@@ -20,7 +20,9 @@ Command add_validate(CLI::App& app) {
                           "Directory for the CSV files and figures (default renders/validation)");
   validatecmd->add_option("--solver", val->solver, "iisph, wcsph or both (default)")
       ->check(CLI::IsMember({"iisph", "wcsph", "both"}));
-  validatecmd->add_option("--case", val->only, "hydrostatic: only this case, e.g. iisph_mirroring");
+  validatecmd->add_option(
+      "--case", val->only,
+      "hydrostatic: only this case, e.g. iisph_mirroring; plate-sweep: e.g. submerged_30deg_x+0.4h");
   validatecmd
       ->add_option("--spacing", val->spacing,
                    "Particle spacing h [m]; dam-break: one or more, comma-separated, coarse to fine (default "

@@ -15,8 +15,9 @@ namespace {
 //   rho_b = sum_f m_f W_bf + rho0 sum_b' V_b' W_bb' ~ sum_f m_f W_bf + gamma1 rho0,
 // the second by the definition of V_b (section 4.1; exact for a uniformly sampled wall),
 // on the thesis' support; on another, the wall's share is Simulation::wall_share_ (the
-// lattice's share of the sample's own row and those below). A sample continuing the
-// fluid's lattice is then at rest density.
+// lattice's share of the sample's own row and those below), and for a sample that starts
+// with fluid on both sides less (Simulation::compute_sample_wall_shares). A sample
+// continuing the fluid's lattice is then at rest density.
 inline double boundary_density(const NeighborLists& bf, Index b, double mass, double wall_share_rho0) {
   double rf = 0.0;
   for (Index k = bf.offset[b]; k < bf.offset[b + 1]; ++k) rf += bf.w[k];
@@ -34,7 +35,7 @@ inline double boundary_density(const NeighborLists& bf, Index b, double mass, do
 // computed from scratch now.
 void Simulation::compute_volumes(const SpatialHashGrid& grid, const std::vector<Index>& which,
                                  std::vector<double>& volume) const {
-  const double r = volume_kernel_.support(), w0 = volume_kernel_.W(0.0), gamma1 = settings_.gamma1 * volume_scale_;
+  const double r = volume_kernel_.support(), w0 = volume_kernel_.W(0.0);
   const std::vector<Vec2>& x = grid.points();
   const Index n = static_cast<Index>(which.size());
 #pragma omp parallel if (n >= kParallelMin / 8)
@@ -48,7 +49,7 @@ void Simulation::compute_volumes(const SpatialHashGrid& grid, const std::vector<
       std::sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(count));
       double sum = w0;
       for (size_t m = 0; m < count; ++m) sum += volume_kernel_.W((xb - x[near[m]]).norm());
-      volume[b] = gamma1 / sum;
+      volume[b] = sample_gamma_[b] / sum;
     }
   }
 }
@@ -92,7 +93,7 @@ void Simulation::move_boundaries(double dt) {
 // support now or at the last update. Static walls far from any moving part keep their
 // volumes.
 void Simulation::update_boundary_volumes() {
-  const double r = volume_kernel_.support(), w0 = volume_kernel_.W(0.0), gamma1 = settings_.gamma1 * volume_scale_;
+  const double r = volume_kernel_.support(), w0 = volume_kernel_.W(0.0);
   const Index nm = static_cast<Index>(moving_.size());
   std::vector<std::uint8_t> near_now(near_moving_.size(), 0);
   // Moving samples: volume and, in the same gather, the static samples they reach.
@@ -113,7 +114,7 @@ void Simulation::update_boundary_volumes() {
         if (!boundary_.moving[j])  // every writer stores 1: the result is order-free
           std::atomic_ref<std::uint8_t>(near_now[j]).store(1, std::memory_order_relaxed);
       }
-      boundary_.volume[b] = gamma1 / sum;
+      boundary_.volume[b] = sample_gamma_[b] / sum;
     }
   }
   volume_update_.clear();
@@ -177,11 +178,12 @@ void Simulation::prepare_boundary_terms() {
 void Simulation::update_boundary_pressure() {
   const double rho0 = settings_.rest_density, inv_rho0_2 = 1.0 / (rho0 * rho0);
   if (settings_.boundary_pressure == BoundaryPressure::Solved && settings_.type == SolverType::WCSPH) {
-    const double k = settings_.stiffness, wall_rho0 = wall_share_ * rho0;
+    const double k = settings_.stiffness;
     parallel_for(boundary_.size(), [&](Index b) {
-      const double p = bf_.offset[b] == bf_.offset[b + 1]
-                           ? 0.0
-                           : std::max(k * (boundary_density(bf_, b, mass_, wall_rho0) / rho0 - 1.0), 0.0);
+      const double p =
+          bf_.offset[b] == bf_.offset[b + 1]
+              ? 0.0
+              : std::max(k * (boundary_density(bf_, b, mass_, sample_wall_share_[b] * rho0) / rho0 - 1.0), 0.0);
       boundary_.p[b] = p;
       scratch_->pb_over_rho2[b] = p * inv_rho0_2;
     });

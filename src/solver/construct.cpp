@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/check.h"
+#include "core/parallel.h"
 #include "solver/internal.h"
 #include "solver/pressure/pressure_solver.h"  // ~Simulation deletes pressure_method_
 
@@ -77,6 +78,49 @@ double lattice_wall_share(const Kernel2D& kernel, double spacing) {
   return lattice_kernel_sum(kernel, spacing, 0) / lattice_kernel_sum(kernel, spacing);
 }
 
+// Section 4.1's rest state, sample by sample. A sample's density is its fluid neighbours'
+// sum plus the wall's share of its support, wall_share_ rho0: the lattice's share of the
+// sample's own row and those below, for a wall with fluid on one side. A one-layer plate
+// has fluid on both sides; with that share its samples start 13 % over rho0 and, through
+// V_b = gamma1 / sum_b' W_bb' (1.23 lattice cells for a single row), the fluid next to it
+// 3.7 % compressed, and the tank sloshes from the first step (docs/validation.md, "Still
+// water without time.settle"). So each sample's share is what of its support the initial
+// fluid leaves, 1 - m sum_f W_bf / rho0, between its own row's share (a plate in still
+// water) and wall_share_ (one side, none, or part of a surface row: unchanged), and its
+// gamma1 scales with the same share on the volume kernel (a single row then has the
+// lattice cell's volume). The thesis and Akinci et al. 2012 calibrate gamma1 on walls
+// with fluid on one side only; this extends it to thin objects.
+void Simulation::compute_sample_wall_shares() {
+  const Index nb = boundary_.size();
+  const double h = setup_.spacing, gamma = settings_.gamma1 * volume_scale_, r = kernel_.support();
+  // The lowest share, a row alone: the fluid's kernel for the density, the volume kernel
+  // (gamma1's own) for the volume.
+  const auto own_row = [h](const Kernel2D& k) {
+    return (lattice_kernel_sum(k, h, 0) - lattice_kernel_sum(k, h, -1)) / lattice_kernel_sum(k, h, 0);
+  };
+  const double lowest = wall_share_ * own_row(kernel_), lowest_v = settings_.gamma1 * own_row(volume_kernel_);
+  const double lattice = lattice_kernel_sum(kernel_, h), lattice_v = lattice_kernel_sum(volume_kernel_, h);
+  sample_wall_share_.assign(static_cast<size_t>(nb), wall_share_);
+  sample_gamma_.assign(static_cast<size_t>(nb), gamma);
+  if (fluid_.size() == 0 || nb == 0) return;
+  SpatialHashGrid grid;
+  grid.build(fluid_.x, r);
+  parallel_for(nb, [&](Index b) {
+    std::vector<Index> near;
+    const size_t count = grid.gather_within(boundary_.x[b], r, -1, near, 0);
+    std::sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(count));  // index order: any thread count
+    double w = 0.0, wv = 0.0;
+    for (size_t k = 0; k < count; ++k) {
+      const double d = (boundary_.x[b] - fluid_.x[near[k]]).norm();
+      w += kernel_.W(d);
+      wv += volume_kernel_.W(d);
+    }
+    const double left = 1.0 - w / lattice, left_v = 1.0 - wv / lattice_v;
+    if (left < wall_share_) sample_wall_share_[b] = std::max(left, lowest);
+    if (left_v < settings_.gamma1) sample_gamma_[b] = gamma * (std::max(left_v, lowest_v) / settings_.gamma1);
+  });
+}
+
 Simulation::~Simulation() = default;
 Simulation::Simulation(Simulation&&) noexcept = default;
 Simulation& Simulation::operator=(Simulation&&) noexcept = default;
@@ -144,8 +188,9 @@ Simulation::Simulation(const SimulationSetup& setup)
   boundary_.p.assign(nb, 0.0);
   boundary_.volume.assign(nb, 0.0);
   near_moving_.assign(nb, 0);
+  if (has_moving_boundaries()) move_boundaries(0.0);  // the pose at t = 0 (a script may start displaced), grid
+  compute_sample_wall_shares();
   if (has_moving_boundaries()) {
-    move_boundaries(0.0);  // the pose at t = 0 (a script may start displaced), grid, volumes
     volume_update_.resize(static_cast<size_t>(nb));
     for (Index b = 0; b < nb; ++b) volume_update_[b] = b;
     compute_volumes(boundary_grid_, volume_update_, boundary_.volume);

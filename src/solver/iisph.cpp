@@ -198,7 +198,7 @@ void Simulation::iterate_pressure(double dt, Index active_samples, StepStats& st
 //   a_bb = d(Ap)_b / dp_b = -dt gamma3 (V_b m / rho0) sum_f |grad W_bf|^2.
 Index Simulation::prepare_solved_boundary(double dt) {
   const SolverSettings& s = settings_;
-  const double rho0 = s.rest_density, wall_rho0 = wall_share_ * rho0, inv_rho0_2 = 1.0 / (rho0 * rho0);
+  const double rho0 = s.rest_density, inv_rho0_2 = 1.0 / (rho0 * rho0);
   const bool thesis_init = s.pressure_init == PressureInit::Thesis;
   const double warm = pressure_method().warm_start_factor();
   const Index nb = boundary_.size();
@@ -216,7 +216,7 @@ Index Simulation::prepare_solved_boundary(double dt) {
       lumped += gw.dot(scratch_->grad_b[f]);
     }
     // rho_b as in boundary_density, summed in the same pass over the sample's pairs.
-    const double sb = (rho0 - (mass_ * wsum + wall_rho0)) / dt - mass_ * div;
+    const double sb = (rho0 - (mass_ * wsum + sample_wall_share_[b] * rho0)) / dt - mass_ * div;
     // The row's diagonal, or its lumped sum over all samples that share a fluid neighbour
     // (dt gamma3 m / rho0^2 sum_f grad W_bf . grad_b_f) when larger: samples denser than
     // the fluid, or a thin plate sampled on both sides, are near-duplicate constraints,

@@ -23,6 +23,9 @@ class SolverProbe {
   // Pressure boundaries: each sample's source and diagonal (0: no row).
   const std::vector<double>& sample_source() const;
   const std::vector<double>& sample_diagonal() const;
+  // Each sample's density at the last neighbour phase, sum_f m W_bf plus its wall's share
+  // (boundary.cpp's boundary_density); 0 for a sample without fluid neighbours.
+  std::vector<double> sample_density() const;
   // (Ap) for the fluid pressures p and, with pressure boundaries, the samples' pressures
   // pb (ignored otherwise): Eq. 24 from these pressures (extrapolation, mirroring or zero
   // derive p_b from p), then Eq. 20 for each fluid particle into ap and each sample into

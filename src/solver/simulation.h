@@ -181,6 +181,7 @@ class Simulation {
   void move_boundaries(double dt);  // scripted poses at time_ -> x, v, a of moving samples
   void update_boundary_volumes();   // section 4.1 where the neighbourhood can change
   // Section 4.1 for the samples `which`, over the grid's points.
+  void compute_sample_wall_shares();
   void compute_volumes(const SpatialHashGrid& grid, const std::vector<Index>& which, std::vector<double>& volume) const;
   double max_boundary_speed() const;  // fastest moving sample at time_ (for Eq. 14)
   double boundary_speed_at(double t) const;
@@ -199,6 +200,12 @@ class Simulation {
   // The fluid particle's volume m / rho0 on the fluid's kernel over that on the volume
   // kernel: V_b = gamma1 volume_scale_ / sum_b' W_bb' (exactly 1 on the thesis' support).
   double volume_scale_;
+  // Each sample's own wall share (boundary_density) at the start: what of its support the
+  // fluid cannot fill. wall_share_ for a sample with fluid on one side or none; down to its
+  // own row's share for one that starts with fluid on both sides (a one-layer plate). Its
+  // volume's gamma1 scales with the same share on the volume kernel (compute_sample_wall_shares).
+  std::vector<double> sample_wall_share_;
+  std::vector<double> sample_gamma_;  // V_b = sample_gamma_ / sum_b' W_bb' (section 4.1)
   // The relaxation of Eq. 21 on this kernel: solver.omega times the lattice's largest
   // eigenvalue of D^-1 A on the thesis' kernel over that on this one (lattice_jacobi_bound),
   // so that a wider support keeps the thesis' margin to Jacobi's divergence (exactly
