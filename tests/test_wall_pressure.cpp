@@ -170,7 +170,7 @@ namespace {
 // own row's, Simulation::compute_sample_wall_shares), and the fluid next to them, whose
 // boundary volume is then a lattice cell. Before: samples 13 % over rho0, the fluid
 // next to the plate 3.7 % (cubic spline).
-TEST(WallPressure, OneLayerPlateStartsAtRestDensity) {
+TEST(ThinObjects, OneLayerPlateStartsAtRestDensity) {
   for (const char* kernel : {"cubic_spline", "wendland_c2"}) {
     SCOPED_TRACE(kernel);
     const Scene scene = load_scene(std::string(SLUICE_SOURCE_DIR) + "/scenes/hard/thin_plate.json",
