@@ -162,6 +162,27 @@ TEST(Validation, TankWithoutSettlingStaysStillOnWendlandC2) {
   }
 }
 
+// Issue 35 item 3, the part that holds: on Wendland's C2 (whose lattice stays still, the
+// test above) a one-layer plate on a fluid column, submerged or piercing the surface,
+// leaves the water still without settling, since each sample's wall share and volume
+// come from the fluid it starts with (Simulation::compute_sample_wall_shares). Before:
+// IISPH 0.0076 / 0.0070, WCSPH 0.0116 / 0.0158 m/s (submerged / piercing); after
+// 0.0020 / 0.0022 and 0.0020 / 0.0023 (docs/validation.md, "Thin objects at rest").
+TEST(Validation, PlateWithoutSettlingStaysStillOnWendlandC2) {
+  const std::pair<const char*, const char*> plates[] = {{"submerged", "[[0.405,0.1],[0.405,0.4]]"},
+                                                        {"piercing", "[[0.405,0.3],[0.405,0.58]]"}};
+  for (const char* solver : {"iisph", "wcsph"})
+    for (const auto& [where, points] : plates) {
+      std::vector<std::string> set{std::string("solver.type=") + solver, "solver.kernel=wendland_c2", "time.settle=0",
+                                   std::string("boundaries.1.points=") + points};
+      if (std::string(solver) == "wcsph") set.push_back("time.dt=null");
+      const analysis::AtRestResult r = analysis::run_at_rest(load_scene(kRoot + "scenes/hard/thin_plate.json", set));
+      std::printf("[ measured ] plate %s without settling, Wendland C2, %s: median %.5f m/s, max %.5f m/s\n", where,
+                  solver, r.median_speed_end, r.max_speed_end);
+      EXPECT_LE(r.median_speed_end, 0.005) << solver << ", " << where;
+    }
+}
+
 // --- `sluice validate`, run as a process -----------------------------------------------
 // Each subcommand as a user runs it, in a folder holding the shipped scenes (its default
 // scene files), shortened with its own flags where the full run takes minutes. A
