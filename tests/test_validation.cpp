@@ -290,7 +290,8 @@ TEST(ValidateCommand, ThinPlate) {
 
 // The plate sweep (issue 35 item 3), one case for 0.1 s (the default: 30 cases of 2 s per
 // solver): a row per solver, its CSV, and a case name that is not one of the sweep's is a
-// flag error (exit 1, nothing run) naming the form of the allowed ones.
+// flag error (exit 1, nothing run) naming the form of the allowed ones; so are two
+// spacings, and a case for thin-plate.
 TEST(ValidateCommand, PlateSweep) {
   test::CaseDir dir;
   const test::Result r =
@@ -301,6 +302,14 @@ TEST(ValidateCommand, PlateSweep) {
   EXPECT_EQ(e.status, 1);
   EXPECT_NE(e.err.find("--case sideways: a case name such as submerged_30deg_x+0.4h"), std::string::npos) << e.err;
   EXPECT_FALSE(std::filesystem::exists(bad.work() / "renders" / "validation" / "plate_sweep.csv"));
+  // Flags the plate's commands do not read are refused, not ignored.
+  test::CaseDir two, cases;
+  const test::Result s = run_validate(two, {"plate-sweep", "--spacing", "0.02,0.01"});
+  EXPECT_EQ(s.status, 1);
+  EXPECT_NE(s.err.find("--spacing 0.02,0.01: plate-sweep runs one spacing"), std::string::npos) << s.err;
+  const test::Result c = run_validate(cases, {"thin-plate", "--case", "submerged_0deg_x+0.0h"});
+  EXPECT_EQ(c.status, 1);
+  EXPECT_NE(c.err.find("thin-plate runs one case per solver"), std::string::npos) << c.err;
 }
 
 }  // namespace

@@ -26,7 +26,7 @@ Command add_validate(CLI::App& app) {
   validatecmd
       ->add_option("--spacing", val->spacing,
                    "Particle spacing h [m]; dam-break: one or more, comma-separated, coarse to fine (default "
-                   "0.04,0.02,0.01); elliptical-drop: one (default: the scene's, 0.025)")
+                   "0.04,0.02,0.01); elliptical-drop, thin-plate, plate-sweep: one (default: the scene's)")
       ->delimiter(',')
       ->check(positive_check());
   validatecmd->add_option("--max-rms", val->max_rms, "dam-break: bound on the RMS relative front error (default 0.20)")

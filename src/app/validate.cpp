@@ -81,6 +81,15 @@ std::vector<std::string> solvers_of(const ValidateOptions& o) {
   return solvers;
 }
 
+// thin-plate and plate-sweep: at most one --spacing, which overrides the scene's (after
+// the --set values, as elliptical-drop's).
+std::vector<std::string> plate_overrides(const ValidateOptions& o) {
+  if (o.spacing.size() > 1) throw view::FlagError("--spacing", join_numbers(o.spacing), o.what + " runs one spacing");
+  std::vector<std::string> set = o.set;
+  if (!o.spacing.empty()) set.push_back(number_override("spacing", o.spacing.front()));
+  return set;
+}
+
 // The shipped tank (scenes/hydrostatic.json) with its defaults and each solver: it must
 // stay at rest, with the pressure of rho0 g d (analysis::RestBounds). WCSPH takes its
 // acoustic step (the scene's fixed 1 ms is IISPH's). Returns the failures.
@@ -206,6 +215,9 @@ int validate_hydrostatic(const ValidateOptions& o, const fs::path& dir) {
 int validate_thin_plate(const ValidateOptions& o, const fs::path& dir) {
   const std::string file = o.scene.empty() ? "scenes/hard/thin_plate.json" : o.scene;
   const double bound = 0.005;
+  if (!o.only.empty())
+    throw view::FlagError("--case", o.only, "thin-plate runs one case per solver; plate-sweep has cases");
+  const std::vector<std::string> overrides = plate_overrides(o);
   std::printf("thin plate %s with its defaults: median speed at the end (bound %g m/s)\n", file.c_str(), bound);
   std::printf("%-6s %6s %7s %12s %12s %14s  %s\n", "solver", "steps", "iter", "median_m/s", "max_m/s",
               "energy_drift_J/m", "result");
@@ -214,7 +226,7 @@ int validate_thin_plate(const ValidateOptions& o, const fs::path& dir) {
   for (const auto& solver : solvers_of(o)) {
     std::vector<std::string> set{"solver.type=" + solver};
     if (solver == "wcsph") set.push_back("time.dt=null");
-    set.insert(set.end(), o.set.begin(), o.set.end());
+    set.insert(set.end(), overrides.begin(), overrides.end());
     const auto r = analysis::run_at_rest(load_scene(file, set));
     const bool ok = r.median_speed_end <= bound;
     failed += !ok;
@@ -259,7 +271,8 @@ std::vector<PlateCase> plate_sweep_cases(double h, double x_column) {
 int validate_plate_sweep(const ValidateOptions& o, const fs::path& dir) {
   const std::string file = o.scene.empty() ? "scenes/hard/thin_plate.json" : o.scene;
   const double bound = 0.005;
-  const Scene base = load_scene(file, o.set);
+  const std::vector<std::string> overrides = plate_overrides(o);
+  const Scene base = load_scene(file, overrides);
   // The scene's plate stands on a fluid column at x = 0.405 m for h = 0.01; on another h the
   // column nearest 0.405 m.
   const double h = base.spacing, x_column = (std::floor(0.405 / h) + 0.5) * h;
@@ -282,7 +295,7 @@ int validate_plate_sweep(const ValidateOptions& o, const fs::path& dir) {
                                    "boundaries.1.points=[[" + number_text(c.a.x()) + "," + number_text(c.a.y()) +
                                        "],[" + number_text(c.b.x()) + "," + number_text(c.b.y()) + "]]"};
       if (solver == "wcsph") set.push_back("time.dt=null");
-      set.insert(set.end(), o.set.begin(), o.set.end());
+      set.insert(set.end(), overrides.begin(), overrides.end());
       // A case that goes unstable fails as itself (its cause printed); the sweep goes on.
       analysis::AtRestResult r;
       std::string unstable;
