@@ -15,7 +15,8 @@ Command add_validate(CLI::App& app) {
       ->check(CLI::IsMember({"hydrostatic", "dam-break", "elliptical-drop", "thin-plate", "plate-sweep"}));
   validatecmd->add_option(
       "--scene", val->scene,
-      "Scene file (default scenes/validation/hydrostatic.json, dam_break_martin_moyce.json or elliptical_drop.json)");
+      "Scene file (default scenes/validation/hydrostatic.json, dam_break_martin_moyce.json or elliptical_drop.json; "
+      "scenes/hard/thin_plate.json for thin-plate and plate-sweep)");
   validatecmd->add_option("-o,--output", val->output_dir,
                           "Directory for the CSV files and figures (default renders/validation)");
   validatecmd->add_option("--solver", val->solver, "iisph, wcsph or both (default)")
