@@ -26,6 +26,10 @@ inline double boundary_density(const NeighborLists& bf, Index b, double mass, do
 
 }  // namespace
 
+double Simulation::sample_density_of(Index b) const {
+  return boundary_density(bf_, b, mass_, sample_wall_share_[b] * settings_.rest_density);
+}
+
 // Section 4.1: V_b = gamma1 / sum_b' W(x_bb'), summed over all boundary particles of
 // every object (self included), so touching and overlapping objects share their volume.
 // W is the thesis' kernel (volume_kernel_), whatever the fluid's support, and V_b is scaled
@@ -181,9 +185,7 @@ void Simulation::update_boundary_pressure() {
     const double k = settings_.stiffness;
     parallel_for(boundary_.size(), [&](Index b) {
       const double p =
-          bf_.offset[b] == bf_.offset[b + 1]
-              ? 0.0
-              : std::max(k * (boundary_density(bf_, b, mass_, sample_wall_share_[b] * rho0) / rho0 - 1.0), 0.0);
+          bf_.offset[b] == bf_.offset[b + 1] ? 0.0 : std::max(k * (sample_density_of(b) / rho0 - 1.0), 0.0);
       boundary_.p[b] = p;
       scratch_->pb_over_rho2[b] = p * inv_rho0_2;
     });

@@ -105,20 +105,24 @@ void Simulation::compute_sample_wall_shares() {
   if (fluid_.size() == 0 || nb == 0) return;
   SpatialHashGrid grid;
   grid.build(fluid_.x, r);
-  parallel_for(nb, [&](Index b) {
-    std::vector<Index> near;
-    const size_t count = grid.gather_within(boundary_.x[b], r, -1, near, 0);
-    std::sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(count));  // index order: any thread count
-    double w = 0.0, wv = 0.0;
-    for (size_t k = 0; k < count; ++k) {
-      const double d = (boundary_.x[b] - fluid_.x[near[k]]).norm();
-      w += kernel_.W(d);
-      wv += volume_kernel_.W(d);
+#pragma omp parallel if (nb >= kParallelMin / 8)
+  {
+    std::vector<Index> near;  // one per thread, as compute_volumes
+#pragma omp for schedule(dynamic, kForChunk)
+    for (Index b = 0; b < nb; ++b) {
+      const size_t count = grid.gather_within(boundary_.x[b], r, -1, near, 0);
+      std::sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(count));  // index order: any thread count
+      double w = 0.0, wv = 0.0;
+      for (size_t k = 0; k < count; ++k) {
+        const double d = (boundary_.x[b] - fluid_.x[near[k]]).norm();
+        w += kernel_.W(d);
+        wv += volume_kernel_.W(d);
+      }
+      const double left = 1.0 - w / lattice, left_v = 1.0 - wv / lattice_v;
+      if (left < wall_share_) sample_wall_share_[b] = std::max(left, lowest);
+      if (left_v < settings_.gamma1) sample_gamma_[b] = gamma * (std::max(left_v, lowest_v) / settings_.gamma1);
     }
-    const double left = 1.0 - w / lattice, left_v = 1.0 - wv / lattice_v;
-    if (left < wall_share_) sample_wall_share_[b] = std::max(left, lowest);
-    if (left_v < settings_.gamma1) sample_gamma_[b] = gamma * (std::max(left_v, lowest_v) / settings_.gamma1);
-  });
+  }
 }
 
 Simulation::~Simulation() = default;

@@ -35,14 +35,9 @@ const std::vector<double>& SolverProbe::sample_source() const { return sim_.scra
 const std::vector<double>& SolverProbe::sample_diagonal() const { return sim_.scratch_->bnd_aii; }
 
 std::vector<double> SolverProbe::sample_density() const {
-  const NeighborLists& bf = sim_.bf_;
   std::vector<double> rho(static_cast<size_t>(sim_.boundary_.size()), 0.0);
-  for (Index b = 0; b < sim_.boundary_.size(); ++b) {
-    if (bf.count(b) == 0) continue;
-    double w = 0.0;
-    for (Index k = bf.offset[b]; k < bf.offset[b + 1]; ++k) w += bf.w[k];
-    rho[b] = sim_.mass_ * w + sim_.sample_wall_share_[b] * sim_.settings_.rest_density;
-  }
+  for (Index b = 0; b < sim_.boundary_.size(); ++b)
+    if (sim_.bf_.count(b) > 0) rho[b] = sim_.sample_density_of(b);
   return rho;
 }
 

@@ -178,9 +178,10 @@ class Simulation {
   bool coarse_correction(const PressureTerms& t);                                // x += P A_c^-1 P^T (s - A x)
 
   // Boundaries (chapter 4).
-  void move_boundaries(double dt);    // scripted poses at time_ -> x, v, a of moving samples
-  void update_boundary_volumes();     // section 4.1 where the neighbourhood can change
-  void compute_sample_wall_shares();  // sample_wall_share_ and sample_gamma_, from the fluid at the start
+  void move_boundaries(double dt);          // scripted poses at time_ -> x, v, a of moving samples
+  void update_boundary_volumes();           // section 4.1 where the neighbourhood can change
+  void compute_sample_wall_shares();        // sample_wall_share_ and sample_gamma_, from the fluid at the start
+  double sample_density_of(Index b) const;  // sum_f m W_bf + its wall share (last neighbour phase's pairs)
   // Section 4.1 for the samples `which`, over the grid's points.
   void compute_volumes(const SpatialHashGrid& grid, const std::vector<Index>& which, std::vector<double>& volume) const;
   double max_boundary_speed() const;  // fastest moving sample at time_ (for Eq. 14)
