@@ -184,30 +184,3 @@ TEST(Multilevel, WallSweepsLowerTheLargestErrorAtTheFloor) {
 
 }  // namespace
 }  // namespace sluice
-
-namespace sluice {
-namespace {
-
-// The run summary suggests the multilevel solve where it is faster (a deep fluid's Jacobi
-// or Chebyshev iterations), never for a shallow one, another solver or a scene it refuses.
-TEST(Multilevel, RunSummaryAdvisesItForADeepFluidOnly) {
-  SolverSettings s;  // IISPH, Jacobi, solved boundary pressure
-  EXPECT_EQ(pressure_solver_advice(s, 4.3), "");  // the 20k dam break
-  EXPECT_EQ(pressure_solver_advice(s, kMultilevelAdviceIterations), "");
-  const std::string deep = pressure_solver_advice(s, 37.7);  // the 130k dam break's first 0.5 s
-  EXPECT_NE(deep.find("37.7 iterations"), std::string::npos) << deep;
-  EXPECT_NE(deep.find("solver.pressure_solver=multilevel"), std::string::npos) << deep;
-  s.pressure_solver = PressureSolver::Chebyshev;
-  EXPECT_NE(pressure_solver_advice(s, 20.0), "");
-  s.pressure_solver = PressureSolver::Multilevel;
-  EXPECT_EQ(pressure_solver_advice(s, 20.0), "");
-  s.pressure_solver = PressureSolver::Jacobi;
-  s.boundary_pressure = BoundaryPressure::Extrapolation;  // the multilevel solve refuses it
-  EXPECT_EQ(pressure_solver_advice(s, 40.0), "");
-  s.boundary_pressure = BoundaryPressure::Solved;
-  s.type = SolverType::WCSPH;
-  EXPECT_EQ(pressure_solver_advice(s, 40.0), "");
-}
-
-}  // namespace
-}  // namespace sluice

@@ -373,9 +373,6 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     std::fprintf(stderr, "sluice: %ld steps in %.1f s, %.2f iterations and %.4f%% error on average; wrote %s\n",
                  totals.steps, totals.wall_seconds, totals.sum_iterations / std::max(1.0, double(totals.steps)),
                  totals.sum_avg_error / std::max(1.0, double(totals.steps)), dir.c_str());
-  const std::string advice =
-      pressure_solver_advice(scene.solver, totals.sum_iterations / std::max(1.0, double(totals.steps)));
-  if (!quiet && !advice.empty()) std::fprintf(stderr, "sluice: note: %s\n", advice.c_str());
 }
 
 }  // namespace sluice::app

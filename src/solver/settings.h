@@ -124,18 +124,6 @@ constexpr double kAcousticCfl = 0.4;
 // with the multilevel solve"). Jacobi and Chebyshev pay for it in iterations: 0.
 constexpr double kMultilevelStabilisation = 1.0;
 
-// Average iterations per step of a Jacobi or Chebyshev run above which its summary
-// suggests the multilevel solve. That solve costs about 8-12 Jacobi sweeps a step for its
-// coarse level and takes about 4 iterations at any depth: on a column at rest Jacobi's 12
-// iterations (0.5 m) cost what it costs, 24 (1 m) 1.56x more, 47 (2 m) 3x more; the 20k
-// dam break's 4.3 cost half of it (docs/performance.md, "Iterations against the depth").
-constexpr double kMultilevelAdviceIterations = 15.0;
-
-// A run summary's advice on the pressure solver for a run that averaged avg_iterations per
-// step: one sentence naming the multilevel solve when it would be faster and the scene
-// allows it (IISPH, a boundary method it supports), else empty.
-std::string pressure_solver_advice(const SolverSettings& s, double avg_iterations);
-
 // The kappa a solve uses: the scene's, or the solver's own.
 inline double stabilisation_kappa(const SolverSettings& s) {
   if (s.pressure_stabilisation >= 0.0) return s.pressure_stabilisation;
