@@ -11,6 +11,10 @@ Index PressureSystem::fluid_count() const { return sim_.fluid_.size(); }
 
 const SolverSettings& PressureSystem::settings() const { return sim_.settings_; }
 
+double PressureSystem::largest_error() const {
+  return parallel_max(sim_.fluid_.size(), 0.0, [&](Index i) { return sim_.scratch_->err[i]; });
+}
+
 double PressureSystem::sweep() {
   const Index n = sim_.fluid_.size();
   sim_.update_boundary_pressure();

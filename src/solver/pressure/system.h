@@ -23,6 +23,9 @@ class PressureSystem {
   // predicted compression (Eq. 23) in percent: the fluid's, or with pressure boundaries
   // the larger of the fluid's and the samples' averages.
   double sweep();
+  // The largest predicted compression (Eq. 23) of a fluid particle after the last sweep, in
+  // percent (the step's max_error_percent).
+  double largest_error() const;
 
   // Chebyshev's semi-iteration (pressure_kernels.h, chebyshev_extrapolate).
   void set_extrapolation_weight(double w) { terms_.chebyshev = w; }  // 0: plain relaxed Jacobi
