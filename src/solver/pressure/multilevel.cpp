@@ -50,8 +50,8 @@ class MultilevelSolver final : public PressureSolverMethod {
       }
     } while ((avg > limits.tolerance_percent || l < limits.min_iterations || corrected) &&
              l + corrections < limits.max_iterations);
-    for (int extra = 0; extra < kLocalSweeps && l + corrections < limits.max_iterations &&
-                        system.largest_error() > kLocalBoundPercent;
+    for (int extra = 0;
+         extra < kLocalSweeps && l + corrections < limits.max_iterations && system.largest_error() > kLocalBoundPercent;
          ++extra) {
       avg = system.sweep();
       ++l;
