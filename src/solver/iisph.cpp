@@ -185,7 +185,7 @@ void Simulation::iterate_pressure(double dt, Index active_samples, StepStats& st
   if (has_moving_boundaries()) add_boundary_pressure_work(dt);
   st.iterations = r.iterations;
   st.avg_error_percent = r.avg_error_percent;
-  st.max_error_percent = parallel_max(n, 0.0, [&](Index i) { return scratch_->err[i]; });
+  st.max_error_percent = system.largest_error();
 }
 
 // Pressure boundaries (Band et al. 2018, "Pressure boundaries for implicit incompressible
