@@ -41,6 +41,9 @@ class SolverProbe {
     if (kappa > 0.0) sim_.prepare_stabilisation();
   }
 
+  // The scheme of the following solves (solver.pressure_solver), to solve one state with two.
+  void set_pressure_solver(PressureSolver kind) { sim_.settings_.pressure_solver = kind; }
+
   // The multilevel scheme's coarse level (solver/pressure/coarse_level.h) at the current
   // pressures, after prepare_pressure_system: the unknowns with p > 0 aggregated by cells,
   // and A_c = P^T A P.

@@ -7,21 +7,24 @@
 
 namespace sluice {
 
+PressureSolveResult iterate_jacobi(PressureSystem& system, const PressureSolveLimits& limits) {
+  int l = 0;
+  double avg = 0.0;
+  do {
+    avg = system.sweep();
+    ++l;
+  } while ((avg > limits.tolerance_percent || l < limits.min_iterations) && l < limits.max_iterations);
+  return {l, avg};
+}
+
 namespace {
 
 class JacobiSolver final : public PressureSolverMethod {
  public:
   const char* name() const override { return "jacobi"; }
   double warm_start_factor() const override { return kJacobiWarmStartFactor; }
-
   PressureSolveResult iterate(PressureSystem& system, const PressureSolveLimits& limits) override {
-    int l = 0;
-    double avg = 0.0;
-    do {
-      avg = system.sweep();
-      ++l;
-    } while ((avg > limits.tolerance_percent || l < limits.min_iterations) && l < limits.max_iterations);
-    return {l, avg};
+    return iterate_jacobi(system, limits);
   }
 };
 

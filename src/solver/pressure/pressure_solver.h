@@ -45,6 +45,10 @@ class PressureSolverMethod {
 
 std::unique_ptr<PressureSolverMethod> make_pressure_solver(PressureSolver kind);
 
+// Algorithm 2's loop: relaxed Jacobi sweeps until the limits' stopping test (jacobi.cpp);
+// the Jacobi scheme, and the multilevel scheme's steps that start with an impact.
+PressureSolveResult iterate_jacobi(PressureSystem& system, const PressureSolveLimits& limits);
+
 // Each scheme's own factory (jacobi.cpp, chebyshev.cpp, multilevel.cpp), for make_pressure_solver.
 std::unique_ptr<PressureSolverMethod> make_jacobi_solver();
 std::unique_ptr<PressureSolverMethod> make_chebyshev_solver();

@@ -26,6 +26,9 @@ class PressureSystem {
   // The largest predicted compression (Eq. 23) of a fluid particle after the last sweep, in
   // percent (the step's max_error_percent).
   double largest_error() const;
+  // The largest compression a fluid particle starts the step with (its density of Eq. 13
+  // against rho0), in percent.
+  double largest_start_compression() const;
 
   // Chebyshev's semi-iteration (pressure_kernels.h, chebyshev_extrapolate).
   void set_extrapolation_weight(double w) { terms_.chebyshev = w; }  // 0: plain relaxed Jacobi
