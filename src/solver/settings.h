@@ -117,6 +117,10 @@ struct TimeSettings {
 
 // WCSPH's acoustic limit (Monaghan 1992): dt <= kAcousticCfl h / (c + v_max).
 constexpr double kAcousticCfl = 0.4;
+// The ambient-pressure limit of an adaptive step: dt <= kHydrostaticCfl h / sqrt(|g| H),
+// H the fluid's extent along g (Simulation::hydrostatic_speed). A 2 m column at rest, h =
+// 0.01, Jacobi: 0.5 to 0.7 held still, 1.0 boiled and stopped at 0.12 s (docs/performance.md).
+constexpr double kHydrostaticCfl = 0.6;
 
 // The multilevel solve's own kappa: its coarse operator leaves the stabilisation out, and
 // above 1 the corrections overshoot next to the walls (kappa 2 moves the shipped tank at

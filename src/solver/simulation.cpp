@@ -127,7 +127,8 @@ void Simulation::run_phase(Phase phase, double dt, StepStats& st) {
   }
 }
 
-// Fixed dt, or the CFL condition Eq. 14: dt = lambda h / v_max, at most dt_max.
+// Fixed dt, or the CFL condition Eq. 14: dt = lambda h / v_max, at most dt_max and at most
+// the ambient-pressure limit kHydrostaticCfl h / sqrt(|g| H).
 double Simulation::choose_time_step() const {
   const TimeSettings& ts = setup_.time;
   if (ts.dt > 0) return ts.dt;
@@ -137,15 +138,38 @@ double Simulation::choose_time_step() const {
                                max_boundary_speed());
   double dt = ts.dt_max;
   if (vmax > 0) dt = std::min(dt, ts.cfl * setup_.spacing / vmax);
+  // The ambient-pressure limit, which Eq. 14 leaves out (the thesis is silent on it).
+  const double c_h = hydrostatic_speed();
+  if (c_h > 0) dt = std::min(dt, kHydrostaticCfl * setup_.spacing / c_h);
   // WCSPH also resolves its sound waves (Monaghan 1992): dt <= 0.4 h / (c + v_max).
   if (settings_.type == SolverType::WCSPH) dt = std::min(dt, kAcousticCfl * setup_.spacing / (wcsph_speed_ + vmax));
   if (dt < ts.dt_min) {
     std::ostringstream os;
     os << "unstable at step " << step_ + 1 << ", t = " << time_ << " s: the CFL time step " << dt
-       << " s fell below time.dt_min = " << ts.dt_min << " s (max speed " << vmax << " m/s)";
+       << " s fell below time.dt_min = " << ts.dt_min << " s (max speed " << vmax << " m/s, sqrt(g H) " << c_h
+       << " m/s)";
     throw SimulationUnstable(os.str());
   }
   return dt;
+}
+
+// sqrt(|g| H), H the fluid's extent along g: the speed that the hydrostatic pressure
+// rho0 |g| H at the bottom of the fluid gives it (Bernoulli). Displacements that keep the
+// density (particles sliding past each other under Eq. 24's sum form) meet a restoring
+// force that grows with the ambient pressure and that the implicit solve does not see; the
+// step integrates it explicitly, and a deep column boils from the bottom up past about
+// h / sqrt(g H) (docs/performance.md, "The stable step of a deep fluid"). Not the solve's
+// largest pressure: a solve that falls short of its tolerance raises it as 1 / dt^2, a
+// shorter step raises it further, and a 2 m column's step fell to 0.1 ms in four steps.
+double Simulation::hydrostatic_speed() const {
+  const Index n = fluid_.size();
+  const double g = settings_.gravity.norm();
+  if (g <= 0.0 || n == 0) return 0.0;
+  const Vec2 down = settings_.gravity / g;
+  constexpr double kLow = -std::numeric_limits<double>::infinity();
+  const double deepest = parallel_max(n, kLow, [&](Index i) { return fluid_.x[i].dot(down); });
+  const double highest = -parallel_max(n, kLow, [&](Index i) { return -fluid_.x[i].dot(down); });
+  return std::sqrt(g * (deepest - highest));
 }
 
 // Semi-implicit Euler (Algorithm 1/2): v(t+dt) = v* + dt a_p, x(t+dt) = x + dt v(t+dt).

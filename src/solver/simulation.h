@@ -106,6 +106,7 @@ class Simulation {
 
   // Phases of a step, in the order of Algorithm 2.
   double choose_time_step() const;
+  double hydrostatic_speed() const;                       // sqrt(|g| H), for choose_time_step
   void advance(double dt, StepStats& st, bool settling);  // one step of Algorithm 2 without time bookkeeping
   void run_phase(Phase phase, double dt, StepStats& st);  // one phase of it
   void settle();                                          // TimeSettings::settle, before t = 0
