@@ -172,18 +172,53 @@ std::vector<std::pair<double, double>> martin_moyce_n2_a225() {
           {6.822, 9.986}, {7.439, 10.963}, {8.031, 11.977}, {8.633, 13.005}, {9.237, 13.970}};
 }
 
+double volume_front(std::vector<double>& x, double h, double share) {
+  if (x.empty()) return std::numeric_limits<double>::quiet_NaN();
+  // Sorted from the front: particle k (from 0) has k + 1/2 cells ahead of its centre, so
+  // the area share * N h^2 ahead is reached at rank r = share * N - 1/2, between two centres.
+  std::sort(x.begin(), x.end(), std::greater<double>());
+  const double n = static_cast<double>(x.size());
+  const double r = std::clamp(share * n - 0.5, 0.0, n - 1);
+  const size_t k = static_cast<size_t>(r);
+  if (k + 1 >= x.size()) return x.back() - 0.5 * h;
+  const double w = r - static_cast<double>(k);
+  return (1 - w) * x[k] + w * x[k + 1];
+}
+
+double ritter_depth(double dZdT, double a, double height) {
+  if (std::isnan(dZdT)) return dZdT;  // no late speed measured
+  const double lag = 2 * std::sqrt(height / (2 * a)) - dZdT;
+  return lag > 0 ? 2 * a * (lag / 3) * (lag / 3) : 0.0;
+}
+
 // RMS relative difference of two fronts at the experiment's times (both interpolated).
-double front_difference(const DamBreakResult& a, const DamBreakResult& b) {
+double front_difference(const DamBreakResult& a, const DamBreakResult& b, Front which) {
   std::vector<double> za, zb;
   for (const auto& p : a.compared)
     for (const auto& q : b.compared)
       if (p.T == q.T) {
-        za.push_back(p.Z_simulated);
-        zb.push_back(q.Z_simulated);
+        za.push_back(which == Front::Tip ? p.Z_simulated : p.Z_bulk);
+        zb.push_back(which == Front::Tip ? q.Z_simulated : q.Z_bulk);
       }
   double sum = 0;
   for (size_t k = 0; k < za.size(); ++k) sum += (za[k] - zb[k]) * (za[k] - zb[k]) / (zb[k] * zb[k]);
   return za.empty() ? std::nan("") : std::sqrt(sum / static_cast<double>(za.size()));
+}
+
+double extrapolated_tip_error(const DamBreakResult& coarse, double h_coarse, const DamBreakResult& fine,
+                              double h_fine) {
+  const double f = 1.0 / (std::sqrt(h_coarse / h_fine) - 1.0);
+  double sum = 0;
+  int n = 0;
+  for (const auto& p : fine.compared)
+    for (const auto& q : coarse.compared)
+      if (p.T == q.T) {
+        const double Z = p.Z_simulated + f * (p.Z_simulated - q.Z_simulated);
+        const double e = (Z - p.Z_experiment) / p.Z_experiment;
+        sum += e * e;
+        ++n;
+      }
+  return n ? std::sqrt(sum / n) : std::numeric_limits<double>::quiet_NaN();
 }
 
 DamBreakResult run_dam_break_front(const Scene& scene) {
@@ -235,14 +270,20 @@ DamBreakResult run_dam_break_front(const Scene& scene) {
   const auto t0 = std::chrono::steady_clock::now();
   Simulation sim(scene);
   double iterations = 0;
+  std::vector<double> xs;
   auto record = [&] {
     double front = -std::numeric_limits<double>::infinity();
-    for (const Vec2& x : sim.fluid().x) front = std::max(front, x.x());
+    xs.clear();
+    for (const Vec2& x : sim.fluid().x) {
+      front = std::max(front, x.x());
+      xs.push_back(x.x());
+    }
     FrontSample s;
     s.t = sim.time();
     s.T = s.t * Tscale;
     s.z = front + 0.5 * h - back;
     s.Z = s.z / r.a;
+    s.Z_bulk = (volume_front(xs, h, kBulkShare) - back) / r.a;
     r.front.push_back(s);
     return s.Z < r.wall_Z;
   };
@@ -268,8 +309,23 @@ DamBreakResult run_dam_break_front(const Scene& scene) {
     const double w = (T - a.T) / (b.T - a.T);
     const double Zs = a.Z + w * (b.Z - a.Z);
     const double e = (Zs - Z) / Z;
-    r.compared.push_back({T, Z, Zs, e});
+    r.compared.push_back({T, Z, Zs, e, a.Z_bulk + w * (b.Z_bulk - a.Z_bulk)});
     sum += e * e;
+  }
+  // The late tip speed: the least-squares slope of Z(T) over the frames past kLateT that
+  // are still short of the wall.
+  {
+    double n = 0, st = 0, sz = 0, stt = 0, stz = 0;
+    for (const FrontSample& f : r.front)
+      if (f.T >= DamBreakResult::kLateT && f.Z < r.wall_Z) {
+        n += 1;
+        st += f.T;
+        sz += f.Z;
+        stt += f.T * f.T;
+        stz += f.T * f.Z;
+      }
+    const double den = n * stt - st * st;
+    r.late_tip_speed = n >= 3 && den > 0 ? (n * stz - st * sz) / den : std::numeric_limits<double>::quiet_NaN();
   }
   if (r.compared.empty() && !r.front.empty())
     throw SceneError(

@@ -93,7 +93,29 @@ std::vector<std::pair<double, double>> martin_moyce_n2_a225();
 struct FrontSample {
   double t = 0, T = 0;  // time [s] and T
   double z = 0, Z = 0;  // front distance from the back wall [m] and Z
+  double Z_bulk = 0;    // the bulk front (volume_front) in Z
 };
+
+// Which front a comparison reads: the tip (the farthest particle, what the experiment
+// measured) or the bulk front (volume_front).
+enum class Front { Tip, Bulk };
+
+// Share of the fluid's volume that lies ahead of the bulk front.
+inline constexpr double kBulkShare = 0.05;
+
+// The bulk front: the position ahead of which `share` of the fluid lies, each particle an
+// h x h cell (the x at which the area beyond reads share * N h^2). Unlike the tip it
+// does not follow the layer one particle thick that leads the surge (Ritter's tip, see
+// tip_depth). x: the particles' x (reordered); share in (0, 1).
+double volume_front(std::vector<double>& x, double h, double share);
+
+// Ritter's (1892) dam break on a dry, frictionless bed: a point of the surge at depth d
+// runs at 2 c0 - 3 sqrt(g d), c0 = sqrt(g H0); only the tip (d -> 0) runs at 2 c0. A front
+// one particle thick is such a point, so the tip's speed lags by 3 sqrt(g d) with d ~ h:
+// its error falls as sqrt(h) (order 1/2, differences 1.41x per halving). Returns the
+// depth d [m] that a late front speed dZ/dT (in Martin & Moyce's units) stands for:
+// dZ/dT = 2 sqrt(H0 / 2a) - 3 sqrt(d / 2a); 0 at or above the ideal tip's speed, NaN for NaN.
+double ritter_depth(double dZdT, double a, double height);
 
 struct DamBreakResult {
   double a = 0, height = 0;        // column width and height [m] (from the scene's fluid)
@@ -101,9 +123,14 @@ struct DamBreakResult {
   std::vector<FrontSample> front;  // at every frame time
   struct Point {
     double T, Z_experiment, Z_simulated, relative_error;
+    double Z_bulk;  // the bulk front at T (not compared with the experiment, which saw the tip)
   };
   std::vector<Point> compared;    // the experiment's points inside the simulated range
   double rms_relative_error = 0;  // sqrt(mean(relative_error^2)) over `compared`
+  // The tip's speed dZ/dT fitted (least squares) over the frames from T = kLateT to the
+  // far wall, where the surge runs as Ritter's; NaN when fewer than 3 frames lie there.
+  double late_tip_speed = 0;
+  static constexpr double kLateT = 5.0;
   long steps = 0;
   double avg_iterations = 0, wall_seconds = 0;
 };
@@ -116,6 +143,12 @@ DamBreakResult run_dam_break_front(const Scene& scene);
 
 // RMS relative difference of two fronts at the experiment's times (both interpolated),
 // relative to b's: the measure of `validate dam-break`'s resolution and solver comparisons.
-double front_difference(const DamBreakResult& a, const DamBreakResult& b);
+double front_difference(const DamBreakResult& a, const DamBreakResult& b, Front which = Front::Tip);
+
+// The tip extrapolated to h -> 0 from two resolutions (coarse, fine) at order 1/2 (the
+// tip's order by Ritter, ritter_depth): Z = Z_fine + (Z_fine - Z_coarse) / (sqrt(h_c / h_f)
+// - 1) at the experiment's times; the RMS relative error of that front against the
+// experiment. NaN when they share no point.
+double extrapolated_tip_error(const DamBreakResult& coarse, double h_coarse, const DamBreakResult& fine, double h_fine);
 
 }  // namespace sluice::analysis

@@ -330,34 +330,52 @@ const std::vector<std::string> kWcsphDamBreak{"solver.type=wcsph", "solver.stiff
 // The observed order of convergence from three successive resolutions h1 > h2 > h3: with
 // d12 and d23 the RMS differences between their fronts, d12 / d23 = (h1 / h2)^p for a
 // front that converges with order p (Roache 1998, Verification and Validation in
-// Computational Science and Engineering). Printed and returned as CSV rows, one per triple;
-// `levels` holds each solver's (h, instant-release front), coarse to fine.
+// Computational Science and Engineering). For the tip and the bulk front (its error is
+// not bounded by the tip's order 1/2, analysis::ritter_depth). Printed and returned as
+// CSV rows, one per front and triple; `levels` holds each solver's (h, instant-release
+// front), coarse to fine.
 using ResolutionLevels =
     std::vector<std::pair<std::string, std::vector<std::pair<double, const analysis::DamBreakResult*>>>>;
 std::string observed_order(const ResolutionLevels& levels) {
-  std::string csv = "solver,h_coarse,h_middle,h_fine,difference_coarse,difference_fine,ratio,observed_order\n";
+  std::string csv = "front,solver,h_coarse,h_middle,h_fine,difference_coarse,difference_fine,ratio,observed_order\n";
   bool header = false;
-  for (const auto& [solver, runs] : levels) {
-    for (size_t k = 0; k + 2 < runs.size(); ++k) {
-      const double h1 = runs[k].first, h2 = runs[k + 1].first, h3 = runs[k + 2].first;
-      const double d12 = analysis::front_difference(*runs[k].second, *runs[k + 1].second);
-      const double d23 = analysis::front_difference(*runs[k + 1].second, *runs[k + 2].second);
-      const double ratio = d12 / d23, order = std::log(ratio) / std::log(h1 / h2);
-      if (!header) {
-        std::printf(
-            "\nobserved order of convergence: the difference between successive fronts, each h against the next\n"
-            "  %-7s %-22s %10s %10s %7s %7s\n",
-            "solver", "h", "coarse_%", "fine_%", "ratio", "order");
-        header = true;
+  for (const analysis::Front which : {analysis::Front::Tip, analysis::Front::Bulk}) {
+    const std::string front = which == analysis::Front::Tip ? "tip" : "bulk";
+    for (const auto& [solver, runs] : levels) {
+      for (size_t k = 0; k + 2 < runs.size(); ++k) {
+        const double h1 = runs[k].first, h2 = runs[k + 1].first, h3 = runs[k + 2].first;
+        const double d12 = analysis::front_difference(*runs[k].second, *runs[k + 1].second, which);
+        const double d23 = analysis::front_difference(*runs[k + 1].second, *runs[k + 2].second, which);
+        const double ratio = d12 / d23, order = std::log(ratio) / std::log(h1 / h2);
+        if (!header) {
+          std::printf(
+              "\nobserved order of convergence: the difference between successive fronts, each h against the next\n"
+              "(tip: the farthest particle, whose order is at most 1/2 by Ritter's solution; bulk: %g %% of the\n"
+              "fluid ahead of it)\n"
+              "  %-5s %-7s %-22s %10s %10s %7s %7s\n",
+              100 * analysis::kBulkShare, "front", "solver", "h", "coarse_%", "fine_%", "ratio", "order");
+          header = true;
+        }
+        const std::string hs = number_text(h1) + " " + number_text(h2) + " " + number_text(h3);
+        std::printf("  %-5s %-7s %-22s %10.2f %10.2f %7.2f %7.2f\n", front.c_str(), solver.c_str(), hs.c_str(),
+                    100 * d12, 100 * d23, ratio, order);
+        csv += front + "," + solver + "," + number_text(h1) + "," + number_text(h2) + "," + number_text(h3) + "," +
+               number_text(d12) + "," + number_text(d23) + "," + number_text(ratio) + "," + number_text(order) + "\n";
       }
-      const std::string hs = number_text(h1) + " " + number_text(h2) + " " + number_text(h3);
-      std::printf("  %-7s %-22s %10.2f %10.2f %7.2f %7.2f\n", solver.c_str(), hs.c_str(), 100 * d12, 100 * d23, ratio,
-                  order);
-      csv += solver + "," + number_text(h1) + "," + number_text(h2) + "," + number_text(h3) + "," + number_text(d12) +
-             "," + number_text(d23) + "," + number_text(ratio) + "," + number_text(order) + "\n";
     }
   }
   if (!header) std::printf("\nobserved order of convergence: needs three spacings or more (--spacing)\n");
+  // The tip extrapolated to h -> 0 at its order 1/2 from each solver's two finest levels:
+  // the converged front, against the experiment.
+  for (const auto& [solver, runs] : levels)
+    if (runs.size() >= 2) {
+      const auto& c = runs[runs.size() - 2];
+      const auto& f = runs.back();
+      std::printf(
+          "%s tip extrapolated to h -> 0 at order 1/2 (from h = %s and %s): RMS %.2f %% against the experiment\n",
+          solver.c_str(), number_text(c.first).c_str(), number_text(f.first).c_str(),
+          100 * analysis::extrapolated_tip_error(*c.second, c.first, *f.second, f.first));
+    }
   return csv;
 }
 
@@ -380,8 +398,8 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
     analysis::DamBreakResult r;
   };
   std::vector<Run> runs;
-  std::string series = "run,solver,release,h,t_s,T,z_m,Z\n";
-  std::string points = "run,solver,release,h,T,Z_experiment,Z_simulated,relative_error\n";
+  std::string series = "run,solver,release,h,t_s,T,z_m,Z,Z_bulk\n";
+  std::string points = "run,solver,release,h,T,Z_experiment,Z_simulated,relative_error,Z_bulk\n";
   int failed = 0;
   auto run_one = [&](const std::string& solver, const std::string& release, const std::string& file, double h) {
     std::vector<std::string> set = solver == "wcsph" ? kWcsphDamBreak : std::vector<std::string>{"solver.type=iisph"};
@@ -392,30 +410,37 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
     const auto& r = run.r;
     const bool ok = r.rms_relative_error <= o.max_rms;
     failed += !ok;
-    std::printf("%-7s %-8s %6.3f %9zu %7ld %6.2f %10.2f %8.1f  %s\n", solver.c_str(), release.c_str(), h,
-                scene.fluid_x.size(), r.steps, r.avg_iterations, 100 * r.rms_relative_error, r.wall_seconds,
-                ok ? "ok" : "FAILED");
+    std::printf("%-7s %-8s %6.3f %9zu %7ld %6.2f %10.2f %9.3f %8.2f %8.1f  %s\n", solver.c_str(), release.c_str(), h,
+                scene.fluid_x.size(), r.steps, r.avg_iterations, 100 * r.rms_relative_error, r.late_tip_speed,
+                analysis::ritter_depth(r.late_tip_speed, r.a, r.height) / h, r.wall_seconds, ok ? "ok" : "FAILED");
     std::fflush(stdout);
     for (const auto& f : r.front) {
       char line[256];
-      std::snprintf(line, sizeof line, "%s,%s,%s,%g,%.6f,%.6f,%.6f,%.6f\n", run.label.c_str(), solver.c_str(),
-                    release.c_str(), h, f.t, f.T, f.z, f.Z);
+      std::snprintf(line, sizeof line, "%s,%s,%s,%g,%.6f,%.6f,%.6f,%.6f,%.6f\n", run.label.c_str(), solver.c_str(),
+                    release.c_str(), h, f.t, f.T, f.z, f.Z, f.Z_bulk);
       series += line;
     }
     for (const auto& p : r.compared) {
       char line[256];
-      std::snprintf(line, sizeof line, "%s,%s,%s,%g,%.4f,%.4f,%.4f,%.6f\n", run.label.c_str(), solver.c_str(),
-                    release.c_str(), h, p.T, p.Z_experiment, p.Z_simulated, p.relative_error);
+      std::snprintf(line, sizeof line, "%s,%s,%s,%g,%.4f,%.4f,%.4f,%.6f,%.4f\n", run.label.c_str(), solver.c_str(),
+                    release.c_str(), h, p.T, p.Z_experiment, p.Z_simulated, p.relative_error, p.Z_bulk);
       points += line;
     }
     runs.push_back(std::move(run));
+    // Written after every run: a long study that is stopped keeps the levels it finished.
+    write_file_atomic((dir / "dam_break_front.csv").string(), series);
+    write_file_atomic((dir / "dam_break_points.csv").string(), points);
   };
   std::printf(
       "dam break against Martin & Moyce (1952), n^2 = 2: RMS relative front error over the measured points "
       "(bound %.0f %%)\n",
       100 * o.max_rms);
-  std::printf("%-7s %-8s %6s %9s %7s %6s %10s %8s  %s\n", "solver", "release", "h_m", "particles", "steps", "iter",
-              "rms_%", "wall_s", "result");
+  std::printf(
+      "(tip_dZdT: the tip's speed from T = %g on, Ritter's 2 for an ideal tip; depth/h: the depth of Ritter's surge\n"
+      "that runs at that speed, in spacings)\n",
+      analysis::DamBreakResult::kLateT);
+  std::printf("%-7s %-8s %6s %9s %7s %6s %10s %9s %8s %8s  %s\n", "solver", "release", "h_m", "particles", "steps",
+              "iter", "rms_%", "tip_dZdT", "depth/h", "wall_s", "result");
   for (const auto& solver : solvers) {
     for (double h : spacings) run_one(solver, "instant", instant_file, h);
     if (o.scene.empty()) run_one(solver, "gate", gate_file, o.spacing.size() == 1 ? o.spacing.front() : 0.02);
@@ -423,11 +448,14 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
   // Convergence: each instant run against the next finer one of its solver; the solvers
   // against each other at the finest h.
   std::printf("\nRMS relative difference of the fronts at the measured times\n");
-  std::string diffs = "what,a,b,rms_relative_difference\n";
+  std::printf("  %-26s %-24s %-24s %9s %9s\n", "", "", "", "tip", "bulk");
+  std::string diffs = "what,a,b,rms_relative_difference,rms_relative_difference_bulk\n";
   auto report = [&](const std::string& what, const Run& a, const Run& b) {
     const double d = analysis::front_difference(a.r, b.r);
-    std::printf("  %-26s %-24s %-24s %7.2f %%\n", what.c_str(), a.label.c_str(), b.label.c_str(), 100 * d);
-    diffs += what + "," + a.label + "," + b.label + "," + number_text(d) + "\n";
+    const double db = analysis::front_difference(a.r, b.r, analysis::Front::Bulk);
+    std::printf("  %-26s %-24s %-24s %7.2f %% %7.2f %%\n", what.c_str(), a.label.c_str(), b.label.c_str(), 100 * d,
+                100 * db);
+    diffs += what + "," + a.label + "," + b.label + "," + number_text(d) + "," + number_text(db) + "\n";
   };
   const Run* finest[2] = {nullptr, nullptr};
   for (size_t k = 0; k < runs.size(); ++k) {
@@ -449,8 +477,6 @@ int validate_dam_break(const ValidateOptions& o, const fs::path& dir) {
   }
   const std::string convergence = observed_order(levels);
 
-  write_file_atomic((dir / "dam_break_front.csv").string(), series);
-  write_file_atomic((dir / "dam_break_points.csv").string(), points);
   write_file_atomic((dir / "dam_break_differences.csv").string(), diffs);
   write_file_atomic((dir / "dam_break_convergence.csv").string(), convergence);
   std::string exp = "T,Z\n";
