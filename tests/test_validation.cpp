@@ -60,8 +60,9 @@ TEST(Validation, DamBreakFrontIisph) {
 
 // Issue 35's convergence target: IISPH's fronts at h = 0.04, 0.02 and 0.01 differ less, by
 // at least 1.5x, at each halving (the observed order of `validate dam-break`, p >= 0.58).
-// Measured 2.29 % then 1.11 % (2.07x) with free-slip walls; 2.04 % then 2.01 % (1.02x)
-// while the artificial viscosity rubbed along the floor. About 30 s.
+// Measured 2.19 % then 1.40 % (1.56x) with steps proportional to h; 2.29 % then 1.11 %
+// while dt_max capped the two coarse levels' steps; 2.04 % then 2.01 % while the
+// artificial viscosity rubbed along the floor. About 30 s.
 TEST(Validation, DamBreakFrontsConvergeIisph) {
   std::vector<analysis::DamBreakResult> r;
   for (const char* h : {"0.04", "0.02", "0.01"})
@@ -72,15 +73,15 @@ TEST(Validation, DamBreakFrontsConvergeIisph) {
       100 * d12, 100 * d23, d12 / d23);
   EXPECT_GE(d12 / d23, 1.5);
   for (const auto& x : r) EXPECT_LT(x.rms_relative_error, kMaxRms);
-  // The bulk front (5 % of the fluid ahead) converges too: 1.65 % then 0.38 % (4.4x).
+  // The bulk front (5 % of the fluid ahead) converges too: 1.09 % then 0.66 % (1.64x).
   const double b12 = analysis::front_difference(r[0], r[1], analysis::Front::Bulk);
   const double b23 = analysis::front_difference(r[1], r[2], analysis::Front::Bulk);
   std::printf("[ measured ] bulk fronts: differences %.3f %%, %.3f %%, ratio %.2f\n", 100 * b12, 100 * b23, b12 / b23);
   EXPECT_GE(b12 / b23, 1.5);
   // Why the tip cannot converge faster than order 1/2 (analysis::ritter_depth): late in the
-  // surge it runs as Ritter's surge at a depth of about half a spacing (measured 0.36, 0.41,
-  // 0.48 h), slower than the ideal tip's dZ/dT = 2 by 3 sqrt(d / 2a), a lag that shrinks
-  // by about sqrt 2 per halving (measured 1.32, 1.32).
+  // surge it runs as Ritter's surge at a depth of about half a spacing (measured 0.50, 0.47,
+  // 0.56 h), slower than the ideal tip's dZ/dT = 2 by 3 sqrt(d / 2a), a lag that shrinks
+  // by about sqrt 2 per halving (measured 1.45, 1.30).
   double lag_before = 0;
   for (size_t k = 0; k < r.size(); ++k) {
     const double h = 0.04 / static_cast<double>(1 << k);

@@ -106,7 +106,7 @@ inline constexpr double kBulkShare = 0.05;
 // The bulk front: the position ahead of which `share` of the fluid lies, each particle an
 // h x h cell (the x at which the area beyond reads share * N h^2). Unlike the tip it
 // does not follow the layer one particle thick that leads the surge (Ritter's tip, see
-// tip_depth). x: the particles' x (reordered); share in (0, 1).
+// ritter_depth). x: the particles' x (reordered); share in (0, 1).
 double volume_front(std::vector<double>& x, double h, double share);
 
 // Ritter's (1892) dam break on a dry, frictionless bed: a point of the surge at depth d
