@@ -5,14 +5,18 @@
 # Prints each round's ratio and their median, with the iterations and the errors of each,
 # and writes CSV. Speed figures go in docs as such ratios, never in timed tests.
 #
-#   scripts/bench-ab.sh REV [CASE...] [--rounds N] [--threads N] [--set-a KEY=VALUE]... [-o DIR]
+#   scripts/bench-ab.sh REV [CASE...] [--rounds N] [--threads N] [--set KEY=VALUE]... [--set-a KEY=VALUE]... [-o DIR]
 #
 # Cases (default: dam20k dam130k column2m):
 #   dam20k    simulate scenes/dam_break.json, first 0.3 s (20k particles)
 #   dam130k   simulate scenes/dam_break_130k.json, first 0.5 s
+#   dam130k5s simulate scenes/dam_break_130k.json, all 5 s (the end-to-end case's simulation;
+#             about 15-20 minutes a run on 2 cores)
 #   column2m  simulate a 2 m column at rest, h = 0.01, dt = 1 ms, 0.5 s (scenes/column.json)
 #   smoke     simulate scenes/dam_break.json, first 0.02 s (a check of this script)
 # --rounds N (default 3), --threads N (default: all cores, fixed for both programs),
+# --set KEY=VALUE (repeatable): a scene override for both programs (an option both have, to
+# time a change to it, e.g. solver.pressure_solver=multilevel against a commit that has it);
 # --set-a KEY=VALUE (repeatable): a scene override for this tree's program only (an option
 # that REV does not have, e.g. solver.pressure_solver=multilevel), named in the CSVs;
 # -o DIR (default out/bench-ab/REV): runs.csv (one row per run) and ratios.csv (per case:
@@ -23,7 +27,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-rev="" rounds=3 threads=$(nproc) out="" cases=() a_sets=()
+rev="" rounds=3 threads=$(nproc) out="" cases=() a_sets=() both_sets=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --rounds) rounds="${2:?--rounds needs a number}"; shift 2 ;;
@@ -32,12 +36,15 @@ while [ $# -gt 0 ]; do
     --set-a)
       case "${2:-}" in *=*) a_sets+=(--set "$2") ;; *) echo "bench-ab: --set-a needs KEY=VALUE, got '${2:-}'" >&2; exit 2 ;; esac
       shift 2 ;;
-    -h|--help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --set)
+      case "${2:-}" in *=*) both_sets+=(--set "$2") ;; *) echo "bench-ab: --set needs KEY=VALUE, got '${2:-}'" >&2; exit 2 ;; esac
+      shift 2 ;;
+    -h|--help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "bench-ab: unknown flag '$1' (see --help)" >&2; exit 2 ;;
     *) if [ -z "$rev" ]; then rev=$1; else cases+=("$1"); fi; shift ;;
   esac
 done
-[ -n "$rev" ] || { echo "bench-ab: usage: scripts/bench-ab.sh REV [CASE...] [--rounds N] [--threads N] [--set-a KEY=VALUE]... [-o DIR]" >&2; exit 2; }
+[ -n "$rev" ] || { echo "bench-ab: usage: scripts/bench-ab.sh REV [CASE...] [--rounds N] [--threads N] [--set KEY=VALUE]... [--set-a KEY=VALUE]... [-o DIR]" >&2; exit 2; }
 case "$rounds" in ''|*[!0-9]*|0) echo "bench-ab: --rounds '$rounds' must be a whole number >= 1" >&2; exit 2 ;; esac
 case "$threads" in ''|*[!0-9]*|0) echo "bench-ab: --threads '$threads' must be a whole number >= 1" >&2; exit 2 ;; esac
 [ ${#cases[@]} -gt 0 ] || cases=(dam20k dam130k column2m)
@@ -47,13 +54,14 @@ case_args() {
   case "$1" in
     dam20k) echo "scenes/dam_break.json --duration 0.3" ;;
     dam130k) echo "scenes/dam_break_130k.json --duration 0.5" ;;
+    dam130k5s) echo "scenes/dam_break_130k.json --duration 5" ;;
     column2m) echo "scenes/column.json --set spacing=0.01 --set time.dt=1e-3 --set fluid.0.max=[0.5,2] --set boundaries.0.max=[0.5,5] --set time.duration=0.5" ;;
     smoke) echo "scenes/dam_break.json --duration 0.02" ;;
     *) return 1 ;;
   esac
 }
 for c in "${cases[@]}"; do
-  case_args "$c" >/dev/null || { echo "bench-ab: unknown case '$c' (dam20k, dam130k, column2m, smoke)" >&2; exit 2; }
+  case_args "$c" >/dev/null || { echo "bench-ab: unknown case '$c' (dam20k, dam130k, dam130k5s, column2m, smoke)" >&2; exit 2; }
 done
 
 sha=$(git rev-parse --verify --quiet "$rev^{commit}") || { echo "bench-ab: '$rev' is not a commit here" >&2; exit 2; }
@@ -64,6 +72,13 @@ if [ ${#a_sets[@]} -gt 0 ]; then
   label=""
   for ((k = 1; k < ${#a_sets[@]}; k += 2)); do label+="${label:+;}${a_sets[k]}"; done
   head="$head($label)"
+fi
+# Overrides of both name both: "abc1234[key=value]".
+if [ ${#both_sets[@]} -gt 0 ]; then
+  label=""
+  for ((k = 1; k < ${#both_sets[@]}; k += 2)); do label+="${label:+;}${both_sets[k]}"; done
+  head="$head[$label]"
+  short_label="$short[$label]"
 fi
 out=${out:-out/bench-ab/$short}
 mkdir -p "$out"
@@ -87,9 +102,10 @@ echo "round,case,build,commit,wall_s,simulated_s,wall_per_simulated_s,steps,iter
 # run ROUND CASE A|B: one simulate, its totals appended to runs.csv.
 run() {
   local bin=$a_bin commit=$head dir=$out/run_$3
-  [ "$3" = B ] && bin=$b_bin commit=$short
+  [ "$3" = B ] && bin=$b_bin commit=${short_label:-$short}
   local args
   read -ra args <<<"$(case_args "$2")"  # words, never globbed ([0.5,2])
+  args+=("${both_sets[@]}")
   [ "$3" = A ] && args+=("${a_sets[@]}")
   timeout 3600 "$bin" simulate "${args[@]}" --threads "$threads" -q -o "$dir" --overwrite >"$dir.log" 2>&1 ||
     { cat "$dir.log" >&2; echo "bench-ab: $3 ($commit) failed on $2 in round $1" >&2; exit 1; }

@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 #include "core/types.h"
@@ -59,6 +60,30 @@ double parallel_max(Index n, double init, F&& f) {
   double m = init;
   for (double s : partial) m = std::max(m, s);
   return m;
+}
+
+// Sum and maximum (0 when n = 0) of f(i) over [0, n) in one pass, f called once per index:
+// the sum of parallel_sum's blocks and order, so the same bits as parallel_sum.
+template <class F>
+std::pair<double, double> parallel_sum_max(Index n, F&& f) {
+  const Index blocks = (n + kReduceBlock - 1) / kReduceBlock;
+  std::vector<double> partial(static_cast<size_t>(blocks), 0.0), largest(static_cast<size_t>(blocks), 0.0);
+#pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
+  for (Index b = 0; b < blocks; ++b) {
+    const Index end = std::min(n, (b + 1) * kReduceBlock);
+    double s = 0.0, m = 0.0;
+    for (Index i = b * kReduceBlock; i < end; ++i) {
+      const double v = f(i);
+      s += v;
+      m = std::max(m, v);
+    }
+    partial[static_cast<size_t>(b)] = s;
+    largest[static_cast<size_t>(b)] = m;
+  }
+  double total = 0.0, m = 0.0;
+  for (double s : partial) total += s;
+  for (double v : largest) m = std::max(m, v);
+  return {total, m};
 }
 
 }  // namespace sluice

@@ -172,16 +172,18 @@ void Simulation::sweep_range(Index begin, Index end, Index block, const Pressure
   }
 }
 
-// Flags `to` with the particles flagged in `from` and their fluid neighbours: a gather over
-// the (symmetric) fluid lists, parallel, the same set as growing it outwards.
+// Flags `to` with the particles flagged in `from` and their fluid neighbours. The lists are
+// symmetric, so spreading each flag to its neighbours gives the same set as a gather over
+// every particle's list; the flagged particles are few (next to the walls), and the
+// gather, which reads the whole list of every unflagged particle, took 2 % of a 130k
+// multilevel step. Serial: a few thousand lists.
 void Simulation::grow_by_neighbours(const std::vector<std::uint8_t>& from, std::vector<std::uint8_t>& to) const {
   const Index n = fluid_.size();
-  to.resize(static_cast<size_t>(n));
-  parallel_for(n, [&](Index i) {
-    bool in = from[i];
-    for (Index k = ff_.offset[i]; !in && k < ff_.offset[i + 1]; ++k) in = from[ff_.j[k]];
-    to[i] = in;
-  });
+  to.assign(from.begin(), from.begin() + n);
+  for (Index i = 0; i < n; ++i) {
+    if (!from[i]) continue;
+    for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) to[ff_.j[k]] = 1;
+  }
 }
 
 // Flags the wall band: the fluid particles with a boundary neighbour and their fluid

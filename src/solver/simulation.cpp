@@ -105,8 +105,10 @@ void Simulation::run_phase(Phase phase, double dt, StepStats& st) {
     case Phase::NonPressure: {  // Eq. 15 at the step's start, then Eq. 12 and gravity
       const Index n = fluid_.size();
       const double rho0 = settings_.rest_density;
-      st.density_error_percent =
-          n ? parallel_sum(n, [&](Index i) { return compression_percent(fluid_.rho[i], rho0); }) / n : 0.0;
+      const auto [sum, largest] =
+          parallel_sum_max(n, [&](Index i) { return compression_percent(fluid_.rho[i], rho0); });
+      st.density_error_percent = n ? sum / n : 0.0;
+      scratch_->start_compression_max = largest;
       apply_nonpressure(dt);
       break;
     }

@@ -15,11 +15,8 @@ double PressureSystem::largest_error() const {
   return parallel_max(sim_.fluid_.size(), 0.0, [&](Index i) { return sim_.scratch_->err[i]; });
 }
 
-double PressureSystem::largest_start_compression() const {
-  const double rho0 = sim_.settings_.rest_density;
-  return parallel_max(sim_.fluid_.size(), 0.0,
-                      [&](Index i) { return solver_detail::compression_percent(sim_.fluid_.rho[i], rho0); });
-}
+// Measured in the step's non-pressure phase, beside the average (StepStats::density_error_percent).
+double PressureSystem::largest_start_compression() const { return sim_.scratch_->start_compression_max; }
 
 double PressureSystem::sweep() {
   const Index n = sim_.fluid_.size();
