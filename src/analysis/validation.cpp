@@ -174,15 +174,18 @@ std::vector<std::pair<double, double>> martin_moyce_n2_a225() {
 
 double volume_front(std::vector<double>& x, double h, double share) {
   if (x.empty()) return std::numeric_limits<double>::quiet_NaN();
-  // Sorted from the front: particle k (from 0) has k + 1/2 cells ahead of its centre, so
-  // the area share * N h^2 ahead is reached at rank r = share * N - 1/2, between two centres.
-  std::sort(x.begin(), x.end(), std::greater<double>());
+  // Ranked from the front: particle k (from 0) has k + 1/2 cells ahead of its centre, so
+  // the area share * N h^2 ahead is reached at rank r = share * N - 1/2, between two
+  // centres. Only ranks k and k + 1 are needed (a selection, not a sort of every frame's x).
   const double n = static_cast<double>(x.size());
   const double r = std::clamp(share * n - 0.5, 0.0, n - 1);
   const size_t k = static_cast<size_t>(r);
-  if (k + 1 >= x.size()) return x.back() - 0.5 * h;
+  if (k + 1 >= x.size()) return *std::min_element(x.begin(), x.end()) - 0.5 * h;
+  const auto kth = x.begin() + static_cast<std::ptrdiff_t>(k);
+  std::nth_element(x.begin(), kth, x.end(), std::greater<double>());
+  const double next = *std::max_element(kth + 1, x.end());  // rank k + 1: the largest behind rank k
   const double w = r - static_cast<double>(k);
-  return (1 - w) * x[k] + w * x[k + 1];
+  return (1 - w) * *kth + w * next;
 }
 
 double ritter_depth(double dZdT, double a, double height) {
@@ -191,18 +194,27 @@ double ritter_depth(double dZdT, double a, double height) {
   return lag > 0 ? 2 * a * (lag / 3) * (lag / 3) : 0.0;
 }
 
-// RMS relative difference of two fronts at the experiment's times (both interpolated).
-double front_difference(const DamBreakResult& a, const DamBreakResult& b, Front which) {
-  std::vector<double> za, zb;
+namespace {
+// Calls f(p, q) for each point p of a and q of b at the same experiment time T.
+template <class F>
+void for_each_common_time(const DamBreakResult& a, const DamBreakResult& b, F&& f) {
   for (const auto& p : a.compared)
     for (const auto& q : b.compared)
-      if (p.T == q.T) {
-        za.push_back(which == Front::Tip ? p.Z_simulated : p.Z_bulk);
-        zb.push_back(which == Front::Tip ? q.Z_simulated : q.Z_bulk);
-      }
+      if (p.T == q.T) f(p, q);
+}
+}  // namespace
+
+// RMS relative difference of two fronts at the experiment's times (both interpolated).
+double front_difference(const DamBreakResult& a, const DamBreakResult& b, Front which) {
   double sum = 0;
-  for (size_t k = 0; k < za.size(); ++k) sum += (za[k] - zb[k]) * (za[k] - zb[k]) / (zb[k] * zb[k]);
-  return za.empty() ? std::nan("") : std::sqrt(sum / static_cast<double>(za.size()));
+  int n = 0;
+  for_each_common_time(a, b, [&](const auto& p, const auto& q) {
+    const double za = which == Front::Tip ? p.Z_simulated : p.Z_bulk;
+    const double zb = which == Front::Tip ? q.Z_simulated : q.Z_bulk;
+    sum += (za - zb) * (za - zb) / (zb * zb);
+    ++n;
+  });
+  return n ? std::sqrt(sum / n) : std::numeric_limits<double>::quiet_NaN();
 }
 
 double extrapolated_tip_error(const DamBreakResult& coarse, double h_coarse, const DamBreakResult& fine,
@@ -210,14 +222,12 @@ double extrapolated_tip_error(const DamBreakResult& coarse, double h_coarse, con
   const double f = 1.0 / (std::sqrt(h_coarse / h_fine) - 1.0);
   double sum = 0;
   int n = 0;
-  for (const auto& p : fine.compared)
-    for (const auto& q : coarse.compared)
-      if (p.T == q.T) {
-        const double Z = p.Z_simulated + f * (p.Z_simulated - q.Z_simulated);
-        const double e = (Z - p.Z_experiment) / p.Z_experiment;
-        sum += e * e;
-        ++n;
-      }
+  for_each_common_time(fine, coarse, [&](const auto& p, const auto& q) {
+    const double Z = p.Z_simulated + f * (p.Z_simulated - q.Z_simulated);
+    const double e = (Z - p.Z_experiment) / p.Z_experiment;
+    sum += e * e;
+    ++n;
+  });
   return n ? std::sqrt(sum / n) : std::numeric_limits<double>::quiet_NaN();
 }
 

@@ -174,9 +174,8 @@ void Simulation::sweep_range(Index begin, Index end, Index block, const Pressure
 
 // Flags `to` with the particles flagged in `from` and their fluid neighbours. The lists are
 // symmetric, so spreading each flag to its neighbours gives the same set as a gather over
-// every particle's list; the flagged particles are few (next to the walls), and the
-// gather, which reads the whole list of every unflagged particle, took 2 % of a 130k
-// multilevel step. Serial: a few thousand lists.
+// every particle's list, and reads only the lists of the flagged few (next to the walls).
+// Serial: a few thousand lists.
 void Simulation::grow_by_neighbours(const std::vector<std::uint8_t>& from, std::vector<std::uint8_t>& to) const {
   const Index n = fluid_.size();
   to.assign(from.begin(), from.begin() + n);

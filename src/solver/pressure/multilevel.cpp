@@ -29,7 +29,7 @@ constexpr int kLocalSweeps = 10;
 // Jacobi's solve from the same state took 234 J/m out; unstable at t = 2.97 s), so such a
 // step takes Algorithm 2's sweeps alone (docs/performance.md, "Impacts at CFL 1"), and
 // then the same local bound: warm-started from two-level solves, the sweeps meet the
-// average in 3-4 iterations and left a particle 20 % compressed, step after step, where
+// average in 3-5 iterations and left a particle 20 % compressed, step after step, where
 // the surge ran up the wall (Wendland's C2: unstable at t = 0.688 s; docs/performance.md,
 // "Impact steps under the local bound").
 constexpr double kImpactPercent = 5.0;
