@@ -28,62 +28,53 @@ void parallel_for(Index n, F&& f) {
   for (Index i = 0; i < n; ++i) f(i);
 }
 
-// Sum of f(i) over [0, n), deterministic for any thread count.
-template <class F>
-double parallel_sum(Index n, F&& f) {
+// The fixed-block reduction behind the three below: each block of kReduceBlock indices is
+// folded from `init` in index order (acc = fold(acc, i)), and the blocks' results are merged
+// in block order on one thread (acc = merge(acc, block)): the same bits for any thread count.
+template <class T, class Fold, class Merge>
+T parallel_reduce(Index n, const T& init, Fold&& fold, Merge&& merge) {
   const Index blocks = (n + kReduceBlock - 1) / kReduceBlock;
-  std::vector<double> partial(static_cast<size_t>(blocks), 0.0);
+  std::vector<T> partial(static_cast<size_t>(blocks), init);
 #pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
   for (Index b = 0; b < blocks; ++b) {
     const Index end = std::min(n, (b + 1) * kReduceBlock);
-    double s = 0.0;
-    for (Index i = b * kReduceBlock; i < end; ++i) s += f(i);
-    partial[static_cast<size_t>(b)] = s;
+    T acc = init;
+    for (Index i = b * kReduceBlock; i < end; ++i) acc = fold(acc, i);
+    partial[static_cast<size_t>(b)] = acc;
   }
-  double total = 0.0;
-  for (double s : partial) total += s;
+  T total = init;
+  for (const T& p : partial) total = merge(total, p);
   return total;
+}
+
+// Sum of f(i) over [0, n), deterministic for any thread count.
+template <class F>
+double parallel_sum(Index n, F&& f) {
+  return parallel_reduce(
+      n, 0.0, [&](double s, Index i) { return s + f(i); }, [](double a, double b) { return a + b; });
 }
 
 // Maximum of f(i) over [0, n) (`init` when n = 0); max is order-independent.
 template <class F>
 double parallel_max(Index n, double init, F&& f) {
-  const Index blocks = (n + kReduceBlock - 1) / kReduceBlock;
-  std::vector<double> partial(static_cast<size_t>(blocks), init);
-#pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
-  for (Index b = 0; b < blocks; ++b) {
-    const Index end = std::min(n, (b + 1) * kReduceBlock);
-    double m = init;
-    for (Index i = b * kReduceBlock; i < end; ++i) m = std::max(m, f(i));
-    partial[static_cast<size_t>(b)] = m;
-  }
-  double m = init;
-  for (double s : partial) m = std::max(m, s);
-  return m;
+  return parallel_reduce(
+      n, init, [&](double m, Index i) { return std::max(m, f(i)); }, [](double a, double b) { return std::max(a, b); });
 }
 
 // Sum and maximum (0 when n = 0) of f(i) over [0, n) in one pass, f called once per index:
 // the sum of parallel_sum's blocks and order, so the same bits as parallel_sum.
 template <class F>
 std::pair<double, double> parallel_sum_max(Index n, F&& f) {
-  const Index blocks = (n + kReduceBlock - 1) / kReduceBlock;
-  std::vector<double> partial(static_cast<size_t>(blocks), 0.0), largest(static_cast<size_t>(blocks), 0.0);
-#pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
-  for (Index b = 0; b < blocks; ++b) {
-    const Index end = std::min(n, (b + 1) * kReduceBlock);
-    double s = 0.0, m = 0.0;
-    for (Index i = b * kReduceBlock; i < end; ++i) {
-      const double v = f(i);
-      s += v;
-      m = std::max(m, v);
-    }
-    partial[static_cast<size_t>(b)] = s;
-    largest[static_cast<size_t>(b)] = m;
-  }
-  double total = 0.0, m = 0.0;
-  for (double s : partial) total += s;
-  for (double v : largest) m = std::max(m, v);
-  return {total, m};
+  using SumMax = std::pair<double, double>;
+  return parallel_reduce(
+      n, SumMax{0.0, 0.0},
+      [&](const SumMax& acc, Index i) {
+        const double v = f(i);
+        return SumMax{acc.first + v, std::max(acc.second, v)};
+      },
+      [](const SumMax& a, const SumMax& b) {
+        return SumMax{a.first + b.first, std::max(a.second, b.second)};
+      });
 }
 
 }  // namespace sluice

@@ -22,8 +22,10 @@ struct SolverScratch {
   std::vector<double> grad_scale;  // c_i of the gradient correction (compute_density)
   std::vector<double> s;           // source term (Eq. 19)
   std::vector<double> err;         // predicted compression of Eq. 23 [%]
-  // The largest compression a particle starts the step with [%] (the non-pressure phase's).
+  // The largest compression a particle starts the step with [%] (the non-pressure phase's),
+  // and the step it belongs to (Simulation::step_stamp; read only in the same step).
   double start_compression_max = 0;
+  long start_compression_stamp = -1;
   // Pressure stabilisation (stabilisation_of): the mean offset x_j - x_i of each particle's
   // neighbours (fluid and samples), fixed within a step, and q_bar of the current iterate.
   std::vector<Vec2> stab_offset;

@@ -98,7 +98,7 @@ void Simulation::run_phase(Phase phase, double dt, StepStats& st) {
       update_boundary_volumes();
       break;
     case Phase::Neighbors:  // Algorithm 2's first loop: neighbours and density (with the periodic spatial sort)
-      if ((step_ + settle_steps_) % kReorderEvery == 0) reorder_fluid();
+      if (step_stamp() % kReorderEvery == 0) reorder_fluid();
       find_neighbors_phase();
       compute_density();
       break;
@@ -109,6 +109,7 @@ void Simulation::run_phase(Phase phase, double dt, StepStats& st) {
           parallel_sum_max(n, [&](Index i) { return compression_percent(fluid_.rho[i], rho0); });
       st.density_error_percent = n ? sum / n : 0.0;
       scratch_->start_compression_max = largest;
+      scratch_->start_compression_stamp = step_stamp();
       apply_nonpressure(dt);
       break;
     }

@@ -217,6 +217,8 @@ class Simulation {
   double sound_speed_ = 0;    // c of the artificial viscosity [m/s]
   double wcsph_speed_ = 0;    // sqrt(k / rho0), WCSPH's acoustic time step [m/s]
   long settle_steps_ = 0;     // steps taken by settle()
+  // Steps taken so far, settling included: which step a per-step value belongs to.
+  long step_stamp() const { return step_ + settle_steps_; }
 
   FluidParticles fluid_;
   BoundaryParticles boundary_;

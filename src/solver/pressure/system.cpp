@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/check.h"
 #include "core/parallel.h"
 #include "solver/internal.h"
 
@@ -16,7 +17,11 @@ double PressureSystem::largest_error() const {
 }
 
 // Measured in the step's non-pressure phase, beside the average (StepStats::density_error_percent).
-double PressureSystem::largest_start_compression() const { return sim_.scratch_->start_compression_max; }
+double PressureSystem::largest_start_compression() const {
+  SLUICE_ASSERT(sim_.scratch_->start_compression_stamp == sim_.step_stamp(),
+                "the non-pressure phase measured this step's start compression");
+  return sim_.scratch_->start_compression_max;
+}
 
 double PressureSystem::sweep() {
   const Index n = sim_.fluid_.size();
