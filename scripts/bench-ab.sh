@@ -5,7 +5,8 @@
 # Prints each round's ratio and their median, with the iterations and the errors of each,
 # and writes CSV. Speed figures go in docs as such ratios, never in timed tests.
 #
-#   scripts/bench-ab.sh REV [CASE...] [--rounds N] [--threads N] [--set KEY=VALUE]... [--set-a KEY=VALUE]... [-o DIR]
+#   scripts/bench-ab.sh REV [CASE...] [--rounds N] [--threads N] [--set KEY=VALUE]... [--set-a KEY=VALUE]...
+#                       [--scenes-b this|rev] [-o DIR]
 #
 # Cases (default: dam20k dam130k column2m):
 #   dam20k    simulate scenes/dam_break.json, first 0.3 s (20k particles)
@@ -19,32 +20,38 @@
 # time a change to it, e.g. solver.pressure_solver=multilevel against a commit that has it);
 # --set-a KEY=VALUE (repeatable): a scene override for this tree's program only (an option
 # that REV does not have, e.g. solver.pressure_solver=multilevel), named in the CSVs;
+# --scenes-b this|rev (default this): the scene files B reads. Both programs read this tree's
+# by default (a change to the code, on the same scenes); with rev, B reads REV's own (each
+# commit's scenes as it ships them: a scene whose settings changed, or that REV cannot read).
+# A case whose scene differs between the two trees is named on the output either way.
 # -o DIR (default out/bench-ab/REV): runs.csv (one row per run) and ratios.csv (per case:
 # the median ratio, its range, iterations, errors and mean neighbour-phase and pressure
-# milliseconds per step of each). Both programs read this
-# tree's scene files. The ratio is REV's wall time per simulated second over this build's:
-# above 1, this build is faster.
+# milliseconds per step of each). The ratio is REV's wall time per simulated second over
+# this build's: above 1, this build is faster.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-rev="" rounds=3 threads=$(nproc) out="" cases=() a_sets=() both_sets=()
+rev="" rounds=3 threads=$(nproc) out="" cases=() a_sets=() both_sets=() scenes_b=this
 while [ $# -gt 0 ]; do
   case "$1" in
     --rounds) rounds="${2:?--rounds needs a number}"; shift 2 ;;
     --threads) threads="${2:?--threads needs a number}"; shift 2 ;;
     -o) out="${2:?-o needs a directory}"; shift 2 ;;
+    --scenes-b)
+      case "${2:-}" in this|rev) scenes_b=$2 ;; *) echo "bench-ab: --scenes-b must be this or rev, got '${2:-}'" >&2; exit 2 ;; esac
+      shift 2 ;;
     --set-a)
       case "${2:-}" in *=*) a_sets+=(--set "$2") ;; *) echo "bench-ab: --set-a needs KEY=VALUE, got '${2:-}'" >&2; exit 2 ;; esac
       shift 2 ;;
     --set)
       case "${2:-}" in *=*) both_sets+=(--set "$2") ;; *) echo "bench-ab: --set needs KEY=VALUE, got '${2:-}'" >&2; exit 2 ;; esac
       shift 2 ;;
-    -h|--help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,30p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "bench-ab: unknown flag '$1' (see --help)" >&2; exit 2 ;;
     *) if [ -z "$rev" ]; then rev=$1; else cases+=("$1"); fi; shift ;;
   esac
 done
-[ -n "$rev" ] || { echo "bench-ab: usage: scripts/bench-ab.sh REV [CASE...] [--rounds N] [--threads N] [--set KEY=VALUE]... [--set-a KEY=VALUE]... [-o DIR]" >&2; exit 2; }
+[ -n "$rev" ] || { echo "bench-ab: usage: scripts/bench-ab.sh REV [CASE...] [--rounds N] [--threads N] [--set KEY=VALUE]... [--set-a KEY=VALUE]... [--scenes-b this|rev] [-o DIR]" >&2; exit 2; }
 case "$rounds" in ''|*[!0-9]*|0) echo "bench-ab: --rounds '$rounds' must be a whole number >= 1" >&2; exit 2 ;; esac
 case "$threads" in ''|*[!0-9]*|0) echo "bench-ab: --threads '$threads' must be a whole number >= 1" >&2; exit 2 ;; esac
 [ ${#cases[@]} -gt 0 ] || cases=(dam20k dam130k column2m)
@@ -96,6 +103,12 @@ if [ ! -x "$bld/sluice" ]; then
     { tail -20 "$bld.log" >&2; echo "bench-ab: the build of $short failed ($bld.log)" >&2; exit 1; }
 fi
 b_bin=$PWD/$bld/sluice
+# Each case's scene (the first word of its arguments): named when it differs between the trees.
+for c in "${cases[@]}"; do
+  scene=$(case_args "$c" | cut -d' ' -f1)
+  git diff --quiet "$sha" -- "$scene" ||
+    echo "bench-ab: $scene differs between this tree and $short; B reads $([ "$scenes_b" = rev ] && echo "$short's" || echo "this tree's") (--scenes-b)"
+done
 
 runs=$out/runs.csv
 echo "round,case,build,commit,wall_s,simulated_s,wall_per_simulated_s,steps,iterations,avg_error_percent,max_error_percent,ms_neighbors,ms_pressure" >"$runs"
@@ -105,6 +118,7 @@ run() {
   [ "$3" = B ] && bin=$b_bin commit=${short_label:-$short}
   local args
   read -ra args <<<"$(case_args "$2")"  # words, never globbed ([0.5,2])
+  [ "$3" = B ] && [ "$scenes_b" = rev ] && args[0]=$src/${args[0]}
   args+=("${both_sets[@]}")
   [ "$3" = A ] && args+=("${a_sets[@]}")
   timeout 3600 "$bin" simulate "${args[@]}" --threads "$threads" -q -o "$dir" --overwrite >"$dir.log" 2>&1 ||
@@ -120,7 +134,7 @@ print(f"{sys.argv[2]},{wall:.3f},{sim:.4f},{wall / sim:.3f},{t['steps']},{t['ave
 EOF
 }
 
-echo "bench-ab: A = this tree ($head), B = $short; ${cases[*]}; $rounds rounds, $threads threads"
+echo "bench-ab: A = this tree ($head), B = $short; ${cases[*]}; $rounds rounds, $threads threads; B reads $scenes_b scenes"
 for ((r = 1; r <= rounds; ++r)); do
   for c in "${cases[@]}"; do
     if ((r % 2)); then run "$r" "$c" A; run "$r" "$c" B; else run "$r" "$c" B; run "$r" "$c" A; fi
