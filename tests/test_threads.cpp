@@ -7,7 +7,16 @@
 #include <optional>
 #include <string>
 
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <thread>
+#include <vector>
+
 #include "app/thread_governor.h"
+#include "core/parallel.h"
 #include "test_process.h"
 
 namespace sluice {
@@ -32,6 +41,49 @@ class ScopedEnv {
   const char* name_;
   std::optional<std::string> old_;
 };
+
+// for_each_chunk (src/core/parallel.h) runs every chunk exactly once, with any number of
+// threads, fewer threads than shares (inside another parallel region), or none.
+TEST(Threads, EveryChunkRunsOnce) {
+  const int before = omp_get_max_threads();
+  for (const int threads : {1, 2, 3, 5})
+    for (const Index chunks : {0, 1, 2, 7, 100})
+      for (const bool parallel : {false, true})
+        for (const bool nested : {false, true}) {
+          omp_set_num_threads(threads);
+          std::vector<std::atomic<int>> runs(static_cast<size_t>(chunks));
+          auto run = [&] { for_each_chunk(chunks, parallel, [&](Index c) { ++runs[static_cast<size_t>(c)]; }); };
+          if (nested) {
+#pragma omp parallel num_threads(2)
+#pragma omp single
+            run();
+          } else {
+            run();
+          }
+          for (Index c = 0; c < chunks; ++c)
+            EXPECT_EQ(runs[static_cast<size_t>(c)].load(), 1)
+                << "chunk " << c << " of " << chunks << ", " << threads << " threads, parallel " << parallel
+                << ", nested " << nested;
+        }
+  omp_set_num_threads(before);
+}
+
+// A thread that falls behind on its own share (here: it takes 2 ms a chunk, the other
+// 0.1 ms, as if the host had descheduled it) has most of the share taken by the other.
+TEST(Threads, ChunksOfASlowThreadMove) {
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(2);
+  constexpr Index kChunks = 40;
+  std::vector<int> ran_by(kChunks, -1);
+  for_each_chunk(kChunks, true, [&](Index c) {
+    ran_by[static_cast<size_t>(c)] = omp_get_thread_num();
+    std::this_thread::sleep_for(std::chrono::microseconds(omp_get_thread_num() == 0 ? 2000 : 100));
+  });
+  omp_set_num_threads(before);
+  const int by_0 = static_cast<int>(std::count(ran_by.begin(), ran_by.end(), 0));
+  if (by_0 == 0 || by_0 == kChunks) GTEST_SKIP() << "OpenMP ran this region on one thread";
+  EXPECT_LT(by_0, kChunks / 4) << "thread 1 took little of thread 0's share";
+}
 
 std::string recorded_wait_policy() {
   CaseDir dir;

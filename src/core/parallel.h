@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <utility>
 #include <vector>
 
@@ -13,8 +14,7 @@
 namespace sluice {
 
 inline constexpr Index kReduceBlock = 1024;
-// Particles per scheduling chunk. Chunks are dealt round-robin, so that both halves of
-// a spatially sorted array (a dense pool and a thin spray, say) are shared by all threads.
+// Particles per scheduling chunk (for_each_chunk).
 inline constexpr Index kForChunk = 256;
 // Loops over fewer items run on one thread. A parallel region costs a few microseconds,
 // and on a machine whose cores are busy with other work every barrier can wait a whole
@@ -22,10 +22,57 @@ inline constexpr Index kForChunk = 256;
 // not change: the work is split the same way whatever the thread count.
 inline constexpr Index kParallelMin = 2048;
 
+// Deals the chunks [0, chunks) to the threads of a parallel region by affinity: thread t
+// owns the t-th contiguous share of them and takes its own in order; a thread whose share
+// is done takes what is left of the others' shares, in turn. So a thread works on the same
+// particles from loop to loop and their cache lines stay on its core (with chunks dealt
+// first come, first served, about half of every array moved between the cores at each
+// loop), while the work of a thread that the host deschedules still moves to the other.
+// Set up before the region (shares: the threads it is planned for; any other count of
+// threads still runs every chunk once); every thread of the region calls run(). Which
+// thread runs a chunk never changes a result where each chunk writes only its own.
+class ChunkDealer {
+ public:
+  static constexpr int kMaxShares = 64;
+  ChunkDealer(Index chunks, int shares) : shares_(std::clamp(shares, 1, kMaxShares)) {
+    for (int s = 0; s < shares_; ++s) {
+      share_[s].next.store(chunks * s / shares_, std::memory_order_relaxed);
+      share_[s].end = chunks * (s + 1) / shares_;
+    }
+  }
+  template <class Body>
+  void run(Body&& body) {
+    const int t = omp_get_thread_num();
+    for (int k = 0; k < shares_; ++k) {  // its own share first, then the others' leftovers
+      Share& sh = share_[(t + k) % shares_];
+      for (Index c; (c = sh.next.fetch_add(1, std::memory_order_relaxed)) < sh.end;) body(c);
+    }
+  }
+
+ private:
+  struct alignas(64) Share {
+    std::atomic<Index> next{0};
+    Index end = 0;
+  };
+  int shares_;
+  Share share_[kMaxShares];
+};
+
+// Runs body(c) once for every c in [0, chunks), in one parallel region (on one thread
+// when `parallel` is false), dealt by ChunkDealer.
+template <class Body>
+void for_each_chunk(Index chunks, bool parallel, Body&& body) {
+  ChunkDealer dealer(chunks, parallel ? omp_get_max_threads() : 1);
+#pragma omp parallel if (parallel && omp_get_max_threads() > 1)
+  dealer.run(body);
+}
+
 template <class F>
 void parallel_for(Index n, F&& f) {
-#pragma omp parallel for schedule(dynamic, kForChunk) if (n >= kParallelMin)
-  for (Index i = 0; i < n; ++i) f(i);
+  for_each_chunk((n + kForChunk - 1) / kForChunk, n >= kParallelMin, [&](Index c) {
+    const Index end = std::min(n, (c + 1) * kForChunk);
+    for (Index i = c * kForChunk; i < end; ++i) f(i);
+  });
 }
 
 // The fixed-block reduction behind the three below: each block of kReduceBlock indices is
@@ -35,13 +82,12 @@ template <class T, class Fold, class Merge>
 T parallel_reduce(Index n, const T& init, Fold&& fold, Merge&& merge) {
   const Index blocks = (n + kReduceBlock - 1) / kReduceBlock;
   std::vector<T> partial(static_cast<size_t>(blocks), init);
-#pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
-  for (Index b = 0; b < blocks; ++b) {
+  for_each_chunk(blocks, n >= kParallelMin, [&](Index b) {
     const Index end = std::min(n, (b + 1) * kReduceBlock);
     T acc = init;
     for (Index i = b * kReduceBlock; i < end; ++i) acc = fold(acc, i);
     partial[static_cast<size_t>(b)] = acc;
-  }
+  });
   T total = init;
   for (const T& p : partial) total = merge(total, p);
   return total;

@@ -136,19 +136,25 @@ double Simulation::jacobi_sweep(Index block, const PressureTerms& t) {
   partial.assign(static_cast<size_t>(sum_blocks), 0.0);
   // A thread may sweep several ranges one after the other (fewer threads than ranges):
   // a range's early updates touch no particle of another range, so that is safe too.
+  // Dealt by affinity (ChunkDealer): thread r sweeps range r, iteration after iteration.
+  const int threads = omp_get_max_threads();
+  ChunkDealer range_dealer(ranges, threads), deferred_dealer((nd + kForChunk - 1) / kForChunk, threads),
+      sum_dealer(sum_blocks, threads);
 #pragma omp parallel if (n >= kParallelMin)
   {
-#pragma omp for schedule(dynamic, 1)
-    for (Index r = 0; r < ranges; ++r) sweep_range(range[r], range[r + 1], block, t);
-#pragma omp for schedule(dynamic, kForChunk)
-    for (Index k = 0; k < nd; ++k) jacobi_update_of(scratch_->deferred[k], t);
-#pragma omp for schedule(dynamic, 1)
-    for (Index b = 0; b < sum_blocks; ++b) {
+    range_dealer.run([&](Index r) { sweep_range(range[r], range[r + 1], block, t); });
+#pragma omp barrier
+    deferred_dealer.run([&](Index c) {
+      for (Index k = c * kForChunk; k < std::min(nd, (c + 1) * kForChunk); ++k)
+        jacobi_update_of(scratch_->deferred[k], t);
+    });
+#pragma omp barrier
+    sum_dealer.run([&](Index b) {
       const Index end = std::min(n, (b + 1) * kReduceBlock);
       double sum = 0.0;
       for (Index i = b * kReduceBlock; i < end; ++i) sum += scratch_->err[i];
       partial[static_cast<size_t>(b)] = sum;
-    }
+    });
   }
   double total = 0.0;
   for (double sum : partial) total += sum;

@@ -136,13 +136,13 @@ void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid,
   const double radius = kernel.support();
   out.offset.resize(static_cast<size_t>(n) + 1);
   out.offset[0] = 0;
-  // More chunks than threads, taken dynamically, so that threads finish together; the
-  // output does not depend on the chunking.
+  // More chunks than threads, so that threads finish together (for_each_chunk: a chunk and
+  // its buffer mostly stay with one thread from step to step); the output does not depend
+  // on the chunking.
   const int nchunks = static_cast<int>(std::clamp<Index>(n / 512, 1, 8 * omp_get_max_threads()));
   out.chunks.resize(static_cast<size_t>(nchunks));
-  auto chunk_begin = [&](int c) { return static_cast<Index>(static_cast<long long>(n) * c / nchunks); };
-#pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
-  for (int c = 0; c < nchunks; ++c) {
+  auto chunk_begin = [&](Index c) { return static_cast<Index>(static_cast<long long>(n) * c / nchunks); };
+  for_each_chunk(nchunks, n >= kParallelMin, [&](Index c) {
     NeighborLists::Chunk& buf = out.chunks[static_cast<size_t>(c)];
     size_t used = 0;
     for (Index i = chunk_begin(c); i < chunk_begin(c + 1); ++i) {
@@ -151,14 +151,13 @@ void find_neighbors(const std::vector<Vec2>& query, const SpatialHashGrid& grid,
       out.offset[i + 1] = static_cast<Index>(used - before);
     }
     buf.used = used;
-  }
+  });
   for (Index i = 0; i < n; ++i) out.offset[i + 1] += out.offset[i];
   resize_pairs(out.j, static_cast<size_t>(out.offset[n]));
-#pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
-  for (int c = 0; c < nchunks; ++c) {
+  for_each_chunk(nchunks, n >= kParallelMin, [&](Index c) {
     const NeighborLists::Chunk& buf = out.chunks[static_cast<size_t>(c)];
     std::copy_n(buf.j.begin(), buf.used, out.j.begin() + out.offset[chunk_begin(c)]);
-  }
+  });
   fill_pair_cache(query, grid.points(), kernel, cache, out);
 }
 
