@@ -62,8 +62,13 @@ class ChunkDealer {
 // when `parallel` is false), dealt by ChunkDealer.
 template <class Body>
 void for_each_chunk(Index chunks, bool parallel, Body&& body) {
-  ChunkDealer dealer(chunks, parallel ? omp_get_max_threads() : 1);
-#pragma omp parallel if (parallel && omp_get_max_threads() > 1)
+  const int threads = parallel ? omp_get_max_threads() : 1;
+  if (threads <= 1) {
+    for (Index c = 0; c < chunks; ++c) body(c);
+    return;
+  }
+  ChunkDealer dealer(chunks, threads);
+#pragma omp parallel
   dealer.run(body);
 }
 
