@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "core/lanes.h"
 #include "core/select.h"
 #include "solver/simulation.h"
 #include "sph/kernel.h"
@@ -321,6 +322,24 @@ TEST(MaskSelect, ReturnsTheChosenOperandBitForBit) {
       EXPECT_EQ(std::bit_cast<std::uint64_t>(mask_select(true, a, b)), std::bit_cast<std::uint64_t>(a));
       EXPECT_EQ(std::bit_cast<std::uint64_t>(mask_select(false, a, b)), std::bit_cast<std::uint64_t>(b));
     }
+}
+
+// The sweep's Eq. 20 loop (pressure_operator_of) computes (a_i - a_j) . grad W_ij in two
+// lanes and adds the lanes' products in x, y order: the scalar dot's bits, which the
+// Jacobi iteration's hashes rely on. Subnormal, signed-zero and large values included.
+TEST(Lanes, PairDotInLanesGivesTheScalarDotsBits) {
+  const double ds[] = {1.5, -2.25e-3, 0.0, -0.0, 3.7e5, 5e-324, -1.0 / 3.0};
+  const float gs[] = {0.75f, -1.0e-3f, 0.0f, -0.0f, 2.5e4f, 1e-45f, 1.0f / 7.0f};
+  for (const double ax : ds)
+    for (const double ay : ds)
+      for (const float gx : gs)
+        for (const float gy : gs) {
+          const Vec2 ai(ax, -ay), aj(ay, ax);
+          const Vec2f g(gx, gy);
+          const double scalar = (ai - aj).dot(g.cast<double>());
+          const Double2 d = (lanes(ai.x(), ai.y()) - load_lanes(aj.data())) * widen_lanes(g.data());
+          EXPECT_EQ(std::bit_cast<std::uint64_t>(d[0] + d[1]), std::bit_cast<std::uint64_t>(scalar));
+        }
 }
 
 // compute_density evaluates two pairs at once (Kernel2D::eval2); GoldenState's hashes rely

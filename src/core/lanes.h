@@ -30,6 +30,24 @@ inline Double2 sqrt_lanes(Double2 v) {
 #endif
 }
 
+// Two consecutive doubles (an unaligned load: a Vec2's x and y).
+inline Double2 load_lanes(const double* p) {
+#if defined(__SSE2__)
+  return _mm_loadu_pd(p);
+#else
+  return Double2{p[0], p[1]};
+#endif
+}
+
+// Two consecutive floats widened to doubles (a Vec2f's x and y): exact, as a scalar cast.
+inline Double2 widen_lanes(const float* p) {
+#if defined(__SSE2__)
+  return _mm_cvtps_pd(_mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(p))));
+#else
+  return Double2{p[0], p[1]};
+#endif
+}
+
 // Per lane, m ? a : b, through masks (never a branch).
 inline Double2 select_lanes(Mask2 m, Double2 a, Double2 b) {
   return reinterpret_cast<Double2>((reinterpret_cast<Mask2>(a) & m) | (reinterpret_cast<Mask2>(b) & ~m));

@@ -3,6 +3,7 @@
 // Jacobi sweep's loops (jacobi_sweep.cpp) and the pressure solvers (iisph.cpp).
 #include <algorithm>
 
+#include "core/lanes.h"
 #include "solver/internal.h"
 #include "solver/simulation.h"
 
@@ -94,9 +95,14 @@ inline double Simulation::stabilisation_of(Index i, const PressureTerms& t) cons
 // err). Reads neighbours' a_p, writes only particle i.
 [[gnu::always_inline]] inline double Simulation::pressure_operator_of(Index i, const PressureTerms& t) const {
   const Vec2 ai = scratch_->a_p[i];
+  // (a_i - a_j) . grad W_ij with both components in one register: the scalar dot's
+  // operations and order, x product plus y product (the same bits), in fewer instructions.
+  const Double2 ai2 = lanes(ai.x(), ai.y());
   double ap = 0.0;
-  for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k)
-    ap += (ai - scratch_->a_p[ff_.j[k]]).dot(ff_.grad[k].cast<double>());
+  for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
+    const Double2 d = (ai2 - load_lanes(scratch_->a_p[ff_.j[k]].data())) * widen_lanes(ff_.grad[k].data());
+    ap += d[0] + d[1];
+  }
   return t.dt * (t.mass * ap + t.gamma2 * ai.dot(scratch_->grad_b[i]));
 }
 
