@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/lanes.h"
 #include "core/parallel.h"
 #include "solver/internal.h"
 #include "solver/pressure/pressure_solver.h"
@@ -97,16 +98,19 @@ Index Simulation::prepare_pressure_system(double dt) {
     const Vec2 vi = fluid_.v[i];
     const double rhoi = fluid_.rho[i];
     double div = 0.0, grad2 = 0.0;
-    Vec2 sum_grad = Vec2::Zero();
+    // x and y in one register each pair, the dots' lanes added x then y: the bits of
+    // (v_i - v_j) . grad W, sum grad W and |grad W|^2 computed one component at a time.
+    const Double2 vi2 = lanes(vi.x(), vi.y());
+    Double2 sum_grad2 = splat(0.0);
     for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
-      const Index j = ff_.j[k];
-      const Vec2 gw = ff_.grad[k].cast<double>();
-      div += (vi - fluid_.v[j]).dot(gw);
-      sum_grad += gw;
-      grad2 += gw.squaredNorm();
+      const Double2 gw = widen_lanes(ff_.grad[k].data());
+      const Double2 dv = (vi2 - load_lanes(fluid_.v[ff_.j[k]].data())) * gw, g2w = gw * gw;
+      div += dv[0] + dv[1];
+      sum_grad2 += gw;
+      grad2 += g2w[0] + g2w[1];
     }
     div *= mass_;
-    sum_grad *= mass_;
+    const Vec2 sum_grad = mass_ * Vec2(sum_grad2[0], sum_grad2[1]);
     double div_b = 0.0;
     Vec2 e = Vec2::Zero();
     for (Index k = fb_.offset[i]; k < fb_.offset[i + 1]; ++k) {
