@@ -475,6 +475,12 @@ TEST(SceneSettings, PressureSolverChoices) {
   const std::string sweeps = error_of(text, {"solver.multilevel_wall_sweeps=101"});
   EXPECT_NE(sweeps.find("/solver/multilevel_wall_sweeps"), std::string::npos) << sweeps;
   EXPECT_NE(sweeps.find("101"), std::string::npos) << sweeps;
+  EXPECT_EQ(parse_scene(text, kFile).solver.multilevel_impact_damping, 0.0);
+  EXPECT_EQ(parse_scene(text, kFile, {"solver.multilevel_impact_damping=0.5"}).solver.multilevel_impact_damping, 0.5);
+  const std::string damping = error_of(text, {"solver.multilevel_impact_damping=1.5"});
+  EXPECT_NE(damping.find("/solver/multilevel_impact_damping: value 1.5 is out of range; must be in [0, 1]"),
+            std::string::npos)
+      << damping;
   // The stabilisation: absent or null, the solver's own kappa (1 with multilevel, else 0).
   const Scene plain = parse_scene(text, kFile);
   EXPECT_EQ(stabilisation_kappa(plain.solver), 0.0);

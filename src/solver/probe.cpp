@@ -18,9 +18,10 @@ void SolverProbe::prepare_pressure_system(double dt) {
   active_samples_ = sim_.prepare_pressure_system(dt);
 }
 
-int SolverProbe::iterate_pressure() {
+int SolverProbe::iterate_pressure(StepStats* stats) {
   StepStats st;
   sim_.iterate_pressure(dt_, active_samples_, st);
+  if (stats) *stats = st;
   return st.iterations;
 }
 

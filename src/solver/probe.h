@@ -16,8 +16,9 @@ class SolverProbe {
   // The phases of a step up to the set-up of the pressure solve with step dt (neighbours
   // and density, v*, then s, a_ii and p^(0)), without advancing time. IISPH only.
   void prepare_pressure_system(double dt);
-  // Then Algorithm 2's solver loop with the simulation's settings; returns its iterations.
-  int iterate_pressure();
+  // Then Algorithm 2's solver loop with the simulation's settings; returns its iterations
+  // (and, given stats, the solve's figures: iterations, average and largest error).
+  int iterate_pressure(StepStats* stats = nullptr);
   const std::vector<double>& source() const;    // s_i of the fluid particles (Eq. 19)
   const std::vector<double>& diagonal() const;  // a_ii (Eq. 22/26 as derived in iisph.cpp)
   // Pressure boundaries: each sample's source and diagonal (0: no row).

@@ -77,6 +77,10 @@ struct SolverSettings {
   // Multilevel: Jacobi iterations on the fluid next to the walls and the samples after each
   // coarse correction (Simulation::smooth_wall_band), in [0, 100]; 0: none.
   int multilevel_wall_sweeps = 2;
+  // Multilevel: 0, a step that starts with a particle past 5 % compressed (an impact) takes
+  // Jacobi's sweeps alone; in (0, 1], it takes the two-level solve with each coarse
+  // correction scaled by this (docs/performance.md, "Impacts with a damped correction").
+  double multilevel_impact_damping = 0.0;
   // IISPH: kappa of the pressure stabilisation of the wall band's and the samples' rows
   // (Simulation::stabilisation_of), in [0, 10]; 0: none, Eq. 20 as printed. The odd-even
   // pattern of rows that Eq. 24's sum form cannot see stops being a null mode; linear

@@ -176,7 +176,7 @@ class Simulation {
   void aggregate_unknowns(CoarseLevel& cl) const;                                // the unknowns with p > 0 by cells
   void assemble_coarse_operator(const PressureTerms& t, CoarseLevel& cl) const;  // A_c = P^T A P
   void build_coarse_level(const PressureTerms& t);                               // aggregates, A_c, its factors
-  bool coarse_correction(const PressureTerms& t);                                // x += P A_c^-1 P^T (s - A x)
+  bool coarse_correction(const PressureTerms& t, double scale = 1.0);            // x += scale P A_c^-1 P^T (s - A x)
 
   // Boundaries (chapter 4).
   void move_boundaries(double dt);          // scripted poses at time_ -> x, v, a of moving samples

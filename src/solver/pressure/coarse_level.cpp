@@ -299,7 +299,7 @@ void Simulation::build_coarse_level(const PressureTerms& t) {
 // while the others start on the residual's two passes, and joins them when it is done
 // (neither depends on the other; each value is computed the same way by any thread).
 // Returns false (and changes nothing) when the coarse operator could not be factorised.
-bool Simulation::coarse_correction(const PressureTerms& t) {
+bool Simulation::coarse_correction(const PressureTerms& t, double scale) {
   CoarseLevel& cl = *scratch_->coarse;
   if (cl.aggregates == 0) return false;
   const Index n = fluid_.size(), nb = boundary_.size();
@@ -344,6 +344,7 @@ bool Simulation::coarse_correction(const PressureTerms& t) {
                                       (t.stabilisation > 0.0 ? sample_stabilisation_of(b, t) : 0.0);
   cl.ec = -cl.ldlt.solve(cl.rc);
   cl.ec -= cl.ldlt.solve(Eigen::VectorXd(cl.rc - cl.a_c * cl.ec));  // one refinement: A_c is not quite symmetric
+  if (scale != 1.0) cl.ec *= scale;
   const double inv_rho0_2 = 1.0 / (settings_.rest_density * settings_.rest_density);
   parallel_for(n, [&](Index i) {
     if (cl.aggregate[i] < 0) return;

@@ -31,7 +31,9 @@ constexpr int kLocalSweeps = 10;
 // then the same local bound: warm-started from two-level solves, the sweeps meet the
 // average in 3-5 iterations and left a particle 20 % compressed, step after step, where
 // the surge ran up the wall (Wendland's C2: unstable at t = 0.688 s; docs/performance.md,
-// "Impact steps under the local bound").
+// "Impact steps under the local bound"). With solver.multilevel_impact_damping > 0 such a
+// step takes the two-level solve with each correction scaled down instead ("Impacts with a
+// damped correction").
 constexpr double kImpactPercent = 5.0;
 
 class MultilevelSolver final : public PressureSolverMethod {
@@ -40,8 +42,12 @@ class MultilevelSolver final : public PressureSolverMethod {
   double warm_start_factor() const override { return kJacobiWarmStartFactor; }
 
   PressureSolveResult iterate(PressureSystem& system, const PressureSolveLimits& limits) override {
-    PressureSolveResult r = system.largest_start_compression() >= kImpactPercent ? iterate_jacobi(system, limits)
-                                                                                 : iterate_two_level(system, limits);
+    const double damping = system.settings().multilevel_impact_damping;
+    PressureSolveResult r;
+    if (system.largest_start_compression() < kImpactPercent)
+      r = iterate_two_level(system, limits, 1.0);
+    else
+      r = damping > 0.0 ? iterate_two_level(system, limits, damping) : iterate_jacobi(system, limits);
     for (int extra = 0;
          extra < kLocalSweeps && r.iterations < limits.max_iterations && system.largest_error() > kLocalBoundPercent;
          ++extra) {
@@ -58,7 +64,9 @@ class MultilevelSolver final : public PressureSolverMethod {
   // otherwise build up until a solve removes it at once and throws the fluid up (a 2 m
   // column went from 15 to 470 J/m in one step). Each correction counts as one iteration
   // (it applies A once), and a sweep always follows it, so the error returned is measured.
-  static PressureSolveResult iterate_two_level(PressureSystem& system, const PressureSolveLimits& limits) {
+  // scale: each correction's share that is applied (1: all of it).
+  static PressureSolveResult iterate_two_level(PressureSystem& system, const PressureSolveLimits& limits,
+                                               double scale) {
     int l = 0, corrections = 0;
     double avg = 0.0;
     bool corrected = false;
@@ -68,7 +76,7 @@ class MultilevelSolver final : public PressureSolverMethod {
       corrected = false;
       if (l == 1 || (avg > limits.tolerance_percent && (l - 1) % kCorrectionEvery == 0)) {
         if (l == 1) system.build_coarse_level();
-        corrected = system.coarse_correction();
+        corrected = system.coarse_correction(scale);
         if (corrected) system.smooth_near_walls(system.settings().multilevel_wall_sweeps);
         corrections += corrected;
       }

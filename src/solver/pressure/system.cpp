@@ -37,7 +37,7 @@ double PressureSystem::sweep() {
 
 void PressureSystem::build_coarse_level() { sim_.build_coarse_level(terms_); }
 
-bool PressureSystem::coarse_correction() { return sim_.coarse_correction(terms_); }
+bool PressureSystem::coarse_correction(double scale) { return sim_.coarse_correction(terms_, scale); }
 
 void PressureSystem::smooth_near_walls(int iterations) {
   if (iterations <= 0) return;

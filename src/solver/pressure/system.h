@@ -41,7 +41,7 @@ class PressureSystem {
   // current residual (one application of A), false when the coarse operator could not be
   // factorised (nothing changed).
   void build_coarse_level();
-  bool coarse_correction();
+  bool coarse_correction(double scale = 1.0);  // the correction times scale
   // Jacobi iterations on the fluid next to the walls and the samples only (after
   // McAdams et al. 2010's extra boundary smoothing); the band is planned on first use.
   void smooth_near_walls(int iterations);
