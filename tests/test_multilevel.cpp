@@ -216,7 +216,8 @@ TEST(Multilevel, ImpactDampingTakesTheTwoLevelSolveAtAnImpact) {
               impact, at_damped.iterations, at_damped.largest_error, at_jacobi.iterations, at_jacobi.largest_error);
   EXPECT_TRUE(before_plain.p == before_damped.p) << "a step without an impact is the plain solve's";
   EXPECT_FALSE(at_damped.p == at_jacobi.p) << "the impact step takes the two-level solve";
-  EXPECT_LT(at_damped.iterations, at_jacobi.iterations) << "the damped correction saves sweeps (measured 12 against 24)";
+  EXPECT_LT(at_damped.iterations, at_jacobi.iterations)
+      << "the damped correction saves sweeps (measured 12 against 24)";
   EXPECT_LE(at_damped.largest_error, 5.0);
 }
 

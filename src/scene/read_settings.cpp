@@ -63,8 +63,7 @@ SolverSettings read_solver(Reader& r, const Context& ctx) {
   s.chebyshev_rho = r.number("chebyshev_rho", s.chebyshev_rho, Range::closed_open(0, 1));
   s.multilevel_cell = r.number("multilevel_cell", s.multilevel_cell, Range::closed(2, 64, "[particle spacings]"));
   s.multilevel_wall_sweeps = r.integer("multilevel_wall_sweeps", s.multilevel_wall_sweeps, 0, 100);
-  s.multilevel_impact_damping =
-      r.number("multilevel_impact_damping", s.multilevel_impact_damping, Range::closed(0, 1));
+  s.multilevel_impact_damping = r.number("multilevel_impact_damping", s.multilevel_impact_damping, Range::closed(0, 1));
   // Absent or null: the solver's own kappa (stabilisation_kappa).
   if (const json* k = r.find("pressure_stabilisation"); k && !k->is_null())
     s.pressure_stabilisation = ctx.number(*k, r.at("pressure_stabilisation"), Range::closed(0, 10, "(kappa)"));
