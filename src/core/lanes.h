@@ -42,7 +42,8 @@ inline Double2 load_lanes(const double* p) {
 // Two consecutive floats widened to doubles (a Vec2f's x and y): exact, as a scalar cast.
 inline Double2 widen_lanes(const float* p) {
 #if defined(__SSE2__)
-  return _mm_cvtps_pd(_mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(p))));
+  // _mm_loadl_epi64 reads through a may_alias type: 8 bytes of floats, no aliasing breach.
+  return _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p))));
 #else
   return Double2{p[0], p[1]};
 #endif
