@@ -293,7 +293,7 @@ void Simulation::build_coarse_level(const PressureTerms& t) {
 }
 
 // One coarse correction: r = s - A x (Eq. 19, 20 and the samples' rows, from the current
-// pressures), then x_u += (A_c^-1 P^T r)_{I(u)} on the aggregated unknowns, clamped at zero
+// pressures), then x_u += scale (A_c^-1 P^T r)_{I(u)} on the aggregated unknowns, clamped at zero
 // as in Eq. 21. Costs one application of A. The first correction of a solve also
 // factorises A_c's symmetric part: Eigen's factorisation is serial, so one thread takes it
 // while the others start on the residual's two passes, and joins them when it is done
