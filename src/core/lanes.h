@@ -49,6 +49,12 @@ inline Double2 widen_lanes(const float* p) {
 #endif
 }
 
+// a[0] * b[0] + a[1] * b[1], the products added x then y: the bits of a scalar 2D dot.
+inline double dot_lanes(Double2 a, Double2 b) {
+  const Double2 p = a * b;
+  return p[0] + p[1];
+}
+
 // Per lane, m ? a : b, through masks (never a branch).
 inline Double2 select_lanes(Mask2 m, Double2 a, Double2 b) {
   return reinterpret_cast<Double2>((reinterpret_cast<Mask2>(a) & m) | (reinterpret_cast<Mask2>(b) & ~m));

@@ -104,10 +104,9 @@ Index Simulation::prepare_pressure_system(double dt) {
     Double2 sum_grad2 = splat(0.0);
     for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
       const Double2 gw = widen_lanes(ff_.grad[k].data());
-      const Double2 dv = (vi2 - load_lanes(fluid_.v[ff_.j[k]].data())) * gw, g2w = gw * gw;
-      div += dv[0] + dv[1];
+      div += dot_lanes(vi2 - load_lanes(fluid_.v[ff_.j[k]].data()), gw);
       sum_grad2 += gw;
-      grad2 += g2w[0] + g2w[1];
+      grad2 += dot_lanes(gw, gw);
     }
     div *= mass_;
     const Vec2 sum_grad = mass_ * Vec2(sum_grad2[0], sum_grad2[1]);

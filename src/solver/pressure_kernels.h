@@ -99,10 +99,8 @@ inline double Simulation::stabilisation_of(Index i, const PressureTerms& t) cons
   // operations and order, x product plus y product (the same bits), in fewer instructions.
   const Double2 ai2 = lanes(ai.x(), ai.y());
   double ap = 0.0;
-  for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k) {
-    const Double2 d = (ai2 - load_lanes(scratch_->a_p[ff_.j[k]].data())) * widen_lanes(ff_.grad[k].data());
-    ap += d[0] + d[1];
-  }
+  for (Index k = ff_.offset[i]; k < ff_.offset[i + 1]; ++k)
+    ap += dot_lanes(ai2 - load_lanes(scratch_->a_p[ff_.j[k]].data()), widen_lanes(ff_.grad[k].data()));
   return t.dt * (t.mass * ap + t.gamma2 * ai.dot(scratch_->grad_b[i]));
 }
 
