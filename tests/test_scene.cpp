@@ -357,9 +357,11 @@ TEST(SceneErrors, ValueErrorsNameLineAndColumn) {
   // found at their first character.
   EXPECT_EQ(error_of(text, {"solver.tolerance=1"}), "scenes/x.json:5:26: " + mirror);
   EXPECT_EQ(error_of(text, {"solver.tolerance=1", "solver.boundary_pressure=zero"}),
-            "scenes/x.json:8:30: /time/fsp: unknown key; allowed keys: duration, fps, dt, cfl, dt_max, dt_min, settle");
+            "scenes/x.json:8:30: /time/fsp: unknown key; allowed keys: duration, fps, dt, cfl, dt_max, dt_min, settle, "
+            "relax_start");
   EXPECT_EQ(error_of(text, {"solver.tolerance=1", "solver.boundary_pressure=zero", "time.fsp=null", "/time/fsp=1"}),
-            "scenes/x.json: /time/fsp: unknown key; allowed keys: duration, fps, dt, cfl, dt_max, dt_min, settle");
+            "scenes/x.json: /time/fsp: unknown key; allowed keys: duration, fps, dt, cfl, dt_max, dt_min, settle, "
+            "relax_start");
   const std::vector<std::string> good_solver_time = {"solver.tolerance=1", "solver.boundary_pressure=zero", "time={}"};
   EXPECT_EQ(error_of(text, good_solver_time),
             "scenes/x.json:10:35: /fluid/0/min: expected an array of 2 numbers, got [0,\"a\"]");

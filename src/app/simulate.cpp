@@ -192,6 +192,10 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     throw;
   }
   Simulation& sim = *built;
+  if (!quiet && sim.relax_stats().rounds > 0)
+    std::fprintf(
+        stderr, "sluice: relaxed the start in %d rounds: largest compression %.2f %% -> %.2f %% (time.relax_start)\n",
+        sim.relax_stats().rounds, sim.relax_stats().largest_before_percent, sim.relax_stats().largest_after_percent);
   // The constructor runs time.settle to its end; a signal that came meanwhile is seen here.
   const bool interrupted_settling = scene.time.settle > 0 && interrupt_signal() != 0;
   RunTotals totals;
@@ -215,6 +219,10 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
       {"frames", sim.frame_count() + 1},
   };
   if (control.resume) summary["resumed_from"] = resume_summary(*control.resume);
+  if (sim.relax_stats().rounds > 0)
+    summary["start_relaxation"] = {{"rounds", sim.relax_stats().rounds},
+                                   {"largest_compression_before_percent", sim.relax_stats().largest_before_percent},
+                                   {"largest_compression_after_percent", sim.relax_stats().largest_after_percent}};
   const auto t0 = std::chrono::steady_clock::now();
   const double wall_before = totals.wall_seconds;  // of the run a checkpoint continues
   auto elapsed = [&] {

@@ -131,6 +131,7 @@ TimeSettings read_time(Reader& r, const Context& ctx) {
   t.dt_max = r.number("dt_max", t.dt_max, Range::positive("[s]"));
   t.dt_min = r.number("dt_min", t.dt_min, Range::positive("[s]"));
   t.settle = r.number("settle", t.settle, Range::at_least(0, "[s]"));
+  t.relax_start = r.boolean("relax_start", t.relax_start);
   if (t.dt_min > t.dt_max)
     ctx.fail(r.at("dt_min"),
              "dt_min " + num(t.dt_min) + " is larger than dt_max " + num(t.dt_max) + "; need 0 < dt_min <= dt_max");

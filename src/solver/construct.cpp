@@ -239,6 +239,7 @@ Simulation::Simulation(const SimulationSetup& setup)
   }
   reorder_fluid();
   recompute_density();
+  if (setup.time.relax_start) relax_stats_ = relax_start();
   if (setup.time.settle > 0) settle();
 }
 

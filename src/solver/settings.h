@@ -117,6 +117,22 @@ struct TimeSettings {
   // velocities damped (time constant settle / 10) and boundaries held at their t = 0
   // pose, then starts at rest with its pressure field established. 0: none.
   double settle = 0.0;
+  // Relax the start before t = 0 (and before any settling) where the sampling left a fluid
+  // particle more than kRelaxStartPercent compressed (Simulation::relax_start): a boundary
+  // off the fluid's lattice. A start on the lattice is not touched. false: never.
+  bool relax_start = true;
+};
+
+// The start's relaxation: rounds until no particle is more than this compressed [%], and
+// at most this many (a 14 % compressed column next to a plate takes 5-11).
+constexpr double kRelaxStartPercent = 1.0;
+constexpr int kRelaxStartRounds = 100;
+
+// What the start's relaxation did: its rounds and the largest compression before and after.
+struct RelaxStats {
+  int rounds = 0;
+  double largest_before_percent = 0.0;
+  double largest_after_percent = 0.0;
 };
 
 // WCSPH's acoustic limit (Monaghan 1992): dt <= kAcousticCfl h / (c + v_max).

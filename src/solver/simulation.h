@@ -90,6 +90,8 @@ class Simulation {
   double mechanical_energy() const;
   // Speed c of the artificial viscosity (SolverSettings::sound_speed, resolved) [m/s].
   double sound_speed() const { return sound_speed_; }
+  // What the start's relaxation did (TimeSettings::relax_start; zero rounds: not needed or off).
+  const RelaxStats& relax_stats() const { return relax_stats_; }
 
   // Benchmark switch: the O(n m) neighbour search instead of the grid.
   void set_brute_force_neighbors(bool on) { brute_force_ = on; }
@@ -110,6 +112,7 @@ class Simulation {
   void advance(double dt, StepStats& st, bool settling);  // one step of Algorithm 2 without time bookkeeping
   void run_phase(Phase phase, double dt, StepStats& st);  // one phase of it
   void settle();                                          // TimeSettings::settle, before t = 0
+  RelaxStats relax_start();                               // TimeSettings::relax_start, before settle()
   void measure_energy(StepStats& st) const;
   void find_neighbors_phase();
   void compute_density();             // grad W per pair, then Eq. 13 + section 4.1
@@ -217,6 +220,7 @@ class Simulation {
   double sound_speed_ = 0;    // c of the artificial viscosity [m/s]
   double wcsph_speed_ = 0;    // sqrt(k / rho0), WCSPH's acoustic time step [m/s]
   long settle_steps_ = 0;     // steps taken by settle()
+  RelaxStats relax_stats_;    // relax_start()'s rounds and compressions
   // Steps taken so far, settling included: which step a per-step value belongs to.
   long step_stamp() const { return step_ + settle_steps_; }
 
