@@ -220,10 +220,12 @@ TEST(Validation, TankWithoutSettlingStaysStillOnWendlandC2) {
 // IISPH 0.0076 / 0.0070, WCSPH 0.0116 / 0.0158 m/s (submerged / piercing); after
 // 0.0020 / 0.0022 and 0.0020 / 0.0023 (docs/validation.md, "Thin objects at rest"). Off the
 // lattice (0.2 spacings right of a fluid column, the column next to it 13.8 % compressed as
-// sampled) the start's relaxation brings it to rest density first (Simulation::relax_start):
-// IISPH 0.0038, WCSPH 0.0042 m/s; as sampled 0.0066 / 0.0095. The plates on the column
-// start 1.4 % compressed at their ends and are relaxed too: 0.0020 / 0.0035 and 0.0014 /
-// 0.0017 (docs/validation.md, "The start relaxed").
+// sampled) the start's relaxation brings it to rest density, and as the tank is at rest it
+// then settles for 0.1 s (Simulation::relax_start, starts_at_rest): IISPH 0.0028, WCSPH
+// 0.0027 m/s; relaxed only 0.0038 / 0.0042; as sampled 0.0066 / 0.0095. The plates on the
+// column start 1.4 % compressed at their ends and are relaxed and settled too: IISPH 0.0022 /
+// 0.0021, WCSPH 0.0011 / 0.0011 (docs/validation.md, "The start relaxed" and the section
+// after it).
 TEST(Validation, PlateWithoutSettlingStaysStillOnWendlandC2) {
   const std::pair<const char*, const char*> plates[] = {{"submerged", "[[0.405,0.1],[0.405,0.4]]"},
                                                         {"piercing", "[[0.405,0.3],[0.405,0.58]]"},
@@ -349,9 +351,10 @@ TEST(ValidateCommand, ThinPlate) {
   expect_verdict(dir, r, {"iisph", "wcsph"}, {{"thin_plate.csv", 2}});
 }
 
-// A relaxed start is said and kept: `simulate` prints its rounds and compressions, and
-// summary.json holds them as start_relaxation (the plate 0.2 spacings off a fluid column,
-// 13.8 % compressed as sampled). A start on the lattice has no such record.
+// A relaxed start is said and kept: `simulate` prints its rounds, compressions and the
+// automatic settle that followed, and summary.json holds them as start_relaxation (the plate
+// 0.2 spacings off a fluid column, 13.8 % compressed as sampled). A start on the lattice has
+// no such record.
 TEST(SimulateCommand, RelaxedStartIsRecorded) {
   test::CaseDir dir;
   const std::string scene = kRoot + "scenes/hard/thin_plate.json";
@@ -364,6 +367,8 @@ TEST(SimulateCommand, RelaxedStartIsRecorded) {
   EXPECT_GT(summary["start_relaxation"]["rounds"].get<int>(), 0);
   EXPECT_GT(summary["start_relaxation"]["largest_compression_before_percent"].get<double>(), 10.0);
   EXPECT_LE(summary["start_relaxation"]["largest_compression_after_percent"].get<double>(), 1.0);
+  EXPECT_EQ(summary["start_relaxation"]["settled_seconds"].get<double>(), 0.1);
+  EXPECT_NE(r.err.find("then settled for 0.1 s, as the fluid is at rest"), std::string::npos) << r.err;
   const test::Result lattice = test::run_sluice(dir, {"simulate", kRoot + "scenes/hydrostatic.json", "-o", "lattice",
                                                       "--duration", "0.01", "--set", "time.settle=0"});
   ASSERT_EQ(lattice.status, 0) << lattice.err;

@@ -194,8 +194,9 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
   Simulation& sim = *built;
   if (!quiet && sim.relax_stats().rounds > 0)
     std::fprintf(
-        stderr, "sluice: relaxed the start in %d rounds: largest compression %.2f %% -> %.2f %% (time.relax_start)\n",
-        sim.relax_stats().rounds, sim.relax_stats().largest_before_percent, sim.relax_stats().largest_after_percent);
+        stderr, "sluice: relaxed the start in %d rounds: largest compression %.2f %% -> %.2f %% (time.relax_start)%s\n",
+        sim.relax_stats().rounds, sim.relax_stats().largest_before_percent, sim.relax_stats().largest_after_percent,
+        sim.relax_stats().settled_seconds > 0 ? "; then settled for 0.1 s, as the fluid is at rest" : "");
   // The constructor runs time.settle to its end; a signal that came meanwhile is seen here.
   const bool interrupted_settling = scene.time.settle > 0 && interrupt_signal() != 0;
   RunTotals totals;
@@ -222,7 +223,8 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
   if (sim.relax_stats().rounds > 0)
     summary["start_relaxation"] = {{"rounds", sim.relax_stats().rounds},
                                    {"largest_compression_before_percent", sim.relax_stats().largest_before_percent},
-                                   {"largest_compression_after_percent", sim.relax_stats().largest_after_percent}};
+                                   {"largest_compression_after_percent", sim.relax_stats().largest_after_percent},
+                                   {"settled_seconds", sim.relax_stats().settled_seconds}};
   const auto t0 = std::chrono::steady_clock::now();
   const double wall_before = totals.wall_seconds;  // of the run a checkpoint continues
   auto elapsed = [&] {

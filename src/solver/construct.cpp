@@ -240,7 +240,12 @@ Simulation::Simulation(const SimulationSetup& setup)
   reorder_fluid();
   recompute_density();
   if (setup.time.relax_start) relax_stats_ = relax_start();
-  if (setup.time.settle > 0) settle();
+  if (setup.time.settle > 0) {
+    settle(setup.time.settle);
+  } else if (relax_stats_.rounds > 0 && starts_at_rest()) {
+    relax_stats_.settled_seconds = kAutoSettleSeconds;
+    settle(kAutoSettleSeconds);
+  }
 }
 
 }  // namespace sluice

@@ -54,8 +54,9 @@ StepStats Simulation::step() {
 // constant settle / 10) and boundaries held at their t = 0 pose, so that the fluid
 // finds its equilibrium, with its pressure field, before the run starts. The run then
 // starts at rest; the pressures stay as the next solve's warm start. No statistics.
-void Simulation::settle() {
-  const double duration = setup_.time.settle, tau = 0.1 * duration;
+void Simulation::settle(double duration) {
+  const double tau = 0.1 * duration;
+  settle_seconds_ = duration;
   std::fill(boundary_.v.begin(), boundary_.v.end(), Vec2::Zero());
   std::fill(boundary_.a.begin(), boundary_.a.end(), Vec2::Zero());
   double t = 0;

@@ -111,7 +111,8 @@ class Simulation {
   double hydrostatic_speed() const;                       // sqrt(|g| H), for choose_time_step
   void advance(double dt, StepStats& st, bool settling);  // one step of Algorithm 2 without time bookkeeping
   void run_phase(Phase phase, double dt, StepStats& st);  // one phase of it
-  void settle();                                          // TimeSettings::settle, before t = 0
+  void settle(double duration);                           // TimeSettings::settle, before t = 0
+  bool starts_at_rest() const;                            // still, its free surface facing up
   RelaxStats relax_start();                               // TimeSettings::relax_start, before settle()
   void measure_energy(StepStats& st) const;
   void find_neighbors_phase();
@@ -216,11 +217,12 @@ class Simulation {
   // so that a wider support keeps the thesis' margin to Jacobi's divergence (exactly
   // solver.omega on the thesis' support).
   double omega_;
-  bool has_no_slip_ = false;  // a boundary object with wall = no_slip and a viscosity > 0
-  double sound_speed_ = 0;    // c of the artificial viscosity [m/s]
-  double wcsph_speed_ = 0;    // sqrt(k / rho0), WCSPH's acoustic time step [m/s]
-  long settle_steps_ = 0;     // steps taken by settle()
-  RelaxStats relax_stats_;    // relax_start()'s rounds and compressions
+  bool has_no_slip_ = false;   // a boundary object with wall = no_slip and a viscosity > 0
+  double sound_speed_ = 0;     // c of the artificial viscosity [m/s]
+  double wcsph_speed_ = 0;     // sqrt(k / rho0), WCSPH's acoustic time step [m/s]
+  long settle_steps_ = 0;      // steps taken by settle()
+  double settle_seconds_ = 0;  // settle()'s duration (time.settle or the automatic one)
+  RelaxStats relax_stats_;     // relax_start()'s rounds and compressions
   // Steps taken so far, settling included: which step a per-step value belongs to.
   long step_stamp() const { return step_ + settle_steps_; }
 

@@ -39,8 +39,9 @@ void Simulation::check_stability(const StepStats& st) const {
   auto fail = [&](const std::string& cause) {
     std::ostringstream os;
     if (st.step <= 0)  // settle() numbers its steps 0, -1, -2, ...
-      os << "unstable while settling (time.settle = " << setup_.time.settle << " s) at its step " << 1 - st.step << ", "
-         << st.time << " s into it: " << cause;
+      os << "unstable while settling ("
+         << (setup_.time.settle > 0 ? "time.settle = " : "automatic, after the relaxed start: ") << settle_seconds_
+         << " s) at its step " << 1 - st.step << ", " << st.time << " s into it: " << cause;
     else
       os << "unstable at step " << st.step << ", t = " << st.time << " s: " << cause;
     throw SimulationUnstable(os.str());
