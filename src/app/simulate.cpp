@@ -197,8 +197,10 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
         stderr, "sluice: relaxed the start in %d rounds: largest compression %.2f %% -> %.2f %% (time.relax_start)%s\n",
         sim.relax_stats().rounds, sim.relax_stats().largest_before_percent, sim.relax_stats().largest_after_percent,
         sim.relax_stats().settled_seconds > 0 ? "; then settled for 0.1 s, as the fluid is at rest" : "");
-  // The constructor runs time.settle to its end; a signal that came meanwhile is seen here.
-  const bool interrupted_settling = scene.time.settle > 0 && interrupt_signal() != 0;
+  // The constructor runs time.settle (or the automatic settle) to its end; a signal that came
+  // meanwhile is seen here.
+  const double settled = scene.time.settle > 0 ? scene.time.settle : sim.relax_stats().settled_seconds;
+  const bool interrupted_settling = settled > 0 && interrupt_signal() != 0;
   RunTotals totals;
   totals.initial_energy = sim.mechanical_energy();
   // Resumed: the checkpoint's state and totals, stats.csv cut back to its step, and its
@@ -296,8 +298,8 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     const int signal = interrupt_signal();
     const bool resumable = control.resume.has_value();  // the earlier run's checkpoints
     char where[160];
-    std::snprintf(where, sizeof where, "while settling (time.settle = %g s, run to its end), before t = 0",
-                  scene.time.settle);
+    std::snprintf(where, sizeof where, "while settling (%s%g s, run to its end), before t = 0",
+                  scene.time.settle > 0 ? "time.settle = " : "automatic, after the relaxed start: ", settled);
     const std::string how =
         resumable ? "its checkpoints are kept; resume with: sluice " + control.command + " --resume " + dir.string()
                   : "no frame and no checkpoint was written (checkpoints start at t = 0, after "
