@@ -192,11 +192,15 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     throw;
   }
   Simulation& sim = *built;
-  if (!quiet && sim.relax_stats().rounds > 0)
-    std::fprintf(
-        stderr, "sluice: relaxed the start in %d rounds: largest compression %.2f %% -> %.2f %% (time.relax_start)%s\n",
-        sim.relax_stats().rounds, sim.relax_stats().largest_before_percent, sim.relax_stats().largest_after_percent,
-        sim.relax_stats().settled_seconds > 0 ? "; then settled for 0.1 s, as the fluid is at rest" : "");
+  if (!quiet && sim.relax_stats().rounds > 0) {
+    const RelaxStats& r = sim.relax_stats();
+    std::fprintf(stderr,
+                 "sluice: relaxed the start in %d rounds: largest compression %.2f %% -> %.2f %% (time.relax_start)",
+                 r.rounds, r.largest_before_percent, r.largest_after_percent);
+    if (r.settled_seconds > 0)
+      std::fprintf(stderr, "; then settled for %g s, as the fluid is at rest", r.settled_seconds);
+    std::fprintf(stderr, "\n");
+  }
   // The constructor runs time.settle (or the automatic settle) to its end; a signal that came
   // meanwhile is seen here.
   const double settled = scene.time.settle > 0 ? scene.time.settle : sim.relax_stats().settled_seconds;
