@@ -390,13 +390,13 @@ std::vector<Case> cases() {
        {{"x.json", ok}},
        {"simulate", "x.json", "-q", "--set", "time.dt=1e-9"},
        2,
-       {"x.json: /time/dt: dt 1e-09 s for 0.02 s (settle + duration) makes at least 20000000 steps; the limit is "
-        "10000000"}},
+       {"x.json: /time/dt: dt 1e-09 s for 0.12 s (an automatic settle of up to 0.1 s + duration) makes at least "
+        "120000000 steps; the limit is 10000000"}},
       {"dt_min that does not advance the time",
        {{"x.json", ok}},
        {"simulate", "x.json", "-q", "--set", "time.dt=null", "--set", "time.dt_min=1e-320"},
        2,
-       {"x.json: /time/dt_min: value", "does not advance the time at t = 0.02 s in double precision; must be > "}},
+       {"x.json: /time/dt_min: value", "does not advance the time at t = 0.12 s in double precision; must be > "}},
       {"dt_min = dt_max = 1e-320",
        {{"x.json", ok}},
        {"simulate", "x.json", "-q", "--set", "time.dt=null", "--set", "time.dt_min=1e-320", "--set",

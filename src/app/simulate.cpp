@@ -169,7 +169,7 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
                  "sluice: note: %d of the removed fluid particles were closer than %g spacings to a boundary sample "
                  "(they would start compressed)\n",
                  scene.fluid_near_samples, shapes::kMinSampleDistance);
-  if (!quiet && scene.time.settle > 0)
+  if (!quiet && !scene.time.auto_settle && scene.time.settle > 0)
     std::fprintf(stderr, "sluice: settling for %g s before t = 0 (time.settle)\n", scene.time.settle);
 
   // The settling phase runs in the constructor: if it goes unstable, the run's record
@@ -197,13 +197,15 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     std::fprintf(stderr,
                  "sluice: relaxed the start in %d rounds: largest compression %.2f %% -> %.2f %% (time.relax_start)",
                  r.rounds, r.largest_before_percent, r.largest_after_percent);
-    if (r.settled_seconds > 0)
-      std::fprintf(stderr, "; then settled for %g s, as the fluid is at rest", r.settled_seconds);
     std::fprintf(stderr, "\n");
   }
   // The constructor runs time.settle (or the automatic settle) to its end; a signal that came
   // meanwhile is seen here.
-  const double settled = scene.time.settle > 0 ? scene.time.settle : sim.relax_stats().settled_seconds;
+  const double settled = sim.settled_seconds();
+  if (!quiet && scene.time.auto_settle && settled > 0)
+    std::fprintf(stderr,
+                 "sluice: settled for %g s before t = 0, as the fluid starts at rest (time.settle \"auto\"; 0: none)\n",
+                 settled);
   const bool interrupted_settling = settled > 0 && interrupt_signal() != 0;
   RunTotals totals;
   totals.initial_energy = sim.mechanical_energy();
@@ -229,8 +231,8 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
   if (sim.relax_stats().rounds > 0)
     summary["start_relaxation"] = {{"rounds", sim.relax_stats().rounds},
                                    {"largest_compression_before_percent", sim.relax_stats().largest_before_percent},
-                                   {"largest_compression_after_percent", sim.relax_stats().largest_after_percent},
-                                   {"settled_seconds", sim.relax_stats().settled_seconds}};
+                                   {"largest_compression_after_percent", sim.relax_stats().largest_after_percent}};
+  if (settled > 0) summary["settle"] = {{"seconds", settled}, {"automatic", scene.time.auto_settle}};
   const auto t0 = std::chrono::steady_clock::now();
   const double wall_before = totals.wall_seconds;  // of the run a checkpoint continues
   auto elapsed = [&] {
@@ -303,7 +305,7 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     const bool resumable = control.resume.has_value();  // the earlier run's checkpoints
     char where[160];
     std::snprintf(where, sizeof where, "while settling (%s%g s, run to its end), before t = 0",
-                  scene.time.settle > 0 ? "time.settle = " : "automatic, after the relaxed start: ", settled);
+                  scene.time.auto_settle ? "automatic, as the fluid starts at rest: " : "time.settle = ", settled);
     const std::string how =
         resumable ? "its checkpoints are kept; resume with: sluice " + control.command + " --resume " + dir.string()
                   : "no frame and no checkpoint was written (checkpoints start at t = 0, after "

@@ -19,17 +19,31 @@ constexpr double kMaxSteps = 1e7;
 void check_step_count(Reader& r, const Context& ctx, const TimeSettings& t, bool fixed) {
   const double step = fixed ? t.dt : t.dt_max;
   const std::string key = fixed ? "dt" : "dt_max";
-  const double steps = (t.settle + t.duration) / step;
+  const double settle = t.auto_settle ? kAutoSettleSeconds : t.settle;  // the longest it can be
+  const double steps = (settle + t.duration) / step;
+  std::string what = "settle";
+  if (t.auto_settle) what = "an automatic settle of up to " + num(settle) + " s";
   if (!(steps <= kMaxSteps))
-    ctx.fail(r.at(key), key + " " + num(step) + " s for " + num(t.settle + t.duration) +
-                            " s (settle + duration) makes at least " + num(std::ceil(steps)) + " steps; the limit is " +
+    ctx.fail(r.at(key), key + " " + num(step) + " s for " + num(settle + t.duration) + " s (" + what +
+                            " + duration) makes at least " + num(std::ceil(steps)) + " steps; the limit is " +
                             num(kMaxSteps) + " (raise " + key + " or shorten the run)");
   const double smallest = fixed ? t.dt : t.dt_min;
-  const double end = t.settle + t.duration;
+  const double end = settle + t.duration;
   if (!(end + smallest > end))
     ctx.fail(r.at(fixed ? "dt" : "dt_min"), "value " + num(smallest) +
                                                 " s does not advance the time at t = " + num(end) +
                                                 " s in double precision; must be > " + num(end * 0x1p-52) + " [s]");
+}
+
+// time.settle: "auto" (absent: the same) or a number of seconds >= 0.
+void read_settle(Reader& r, const Context& ctx, TimeSettings& t) {
+  const json* v = r.find("settle");
+  t.auto_settle = !v || (v->is_string() && v->get<std::string>() == "auto");
+  if (!t.auto_settle) {
+    if (!v->is_number()) ctx.fail(r.at("settle"), "expected a number >= 0 [s] or \"auto\", got " + show(*v));
+    t.settle = ctx.number(*v, r.at("settle"), Range::at_least(0, "[s]"));
+  }
+  r.resolved()["settle"] = t.auto_settle ? json("auto") : json(t.settle);
 }
 
 }  // namespace
@@ -130,7 +144,7 @@ TimeSettings read_time(Reader& r, const Context& ctx) {
   r.resolved()["cfl"] = fixed ? json(nullptr) : json(t.cfl);
   t.dt_max = r.number("dt_max", t.dt_max, Range::positive("[s]"));
   t.dt_min = r.number("dt_min", t.dt_min, Range::positive("[s]"));
-  t.settle = r.number("settle", t.settle, Range::at_least(0, "[s]"));
+  read_settle(r, ctx, t);
   t.relax_start = r.boolean("relax_start", t.relax_start);
   if (t.dt_min > t.dt_max)
     ctx.fail(r.at("dt_min"),

@@ -240,10 +240,9 @@ Simulation::Simulation(const SimulationSetup& setup)
   reorder_fluid();
   recompute_density();
   if (setup.time.relax_start) relax_stats_ = relax_start();
-  if (setup.time.settle > 0) {
-    settle(setup.time.settle);
-  } else if (relax_stats_.rounds > 0 && starts_at_rest()) {
-    relax_stats_.settled_seconds = kAutoSettleSeconds;
+  if (!setup.time.auto_settle) {
+    if (setup.time.settle > 0) settle(setup.time.settle);
+  } else if (starts_at_rest()) {
     settle(kAutoSettleSeconds);
   }
 }

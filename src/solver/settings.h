@@ -115,9 +115,12 @@ struct TimeSettings {
   double dt_min = 1.0e-6;  // smallest adaptive step [s]; a smaller one means the run went unstable
   // Settling before t = 0 [s], >= 0: the fluid is stepped under gravity with its
   // velocities damped (time constant settle / 10) and boundaries held at their t = 0
-  // pose, then starts at rest with its pressure field established. 0: none, except after a
-  // relaxed start of a fluid at rest (kAutoSettleSeconds).
+  // pose, then starts at rest with its pressure field established. 0: none. Used when
+  // auto_settle is false.
   double settle = 0.0;
+  // time.settle "auto" (the default): kAutoSettleSeconds where the fluid starts at rest
+  // (Simulation::starts_at_rest), none where it does not.
+  bool auto_settle = true;
   // Relax the start before t = 0 (and before any settling) where the sampling left a fluid
   // particle more than kRelaxStartPercent compressed (Simulation::relax_start): a boundary
   // off the fluid's lattice. A start on the lattice is not touched. false: never.
@@ -128,9 +131,10 @@ struct TimeSettings {
 // at most this many (a 14 % compressed column next to a plate takes 5-11).
 constexpr double kRelaxStartPercent = 1.0;
 constexpr int kRelaxStartRounds = 100;
-// A relaxed start of a fluid at rest, with time.settle 0, settles this long [s]:
-// the relaxation leaves each particle at rest density but not in equilibrium under gravity
-// next to the boundary it was relaxed against (docs/validation.md, "The start relaxed").
+// A fluid that starts at rest, with time.settle "auto", settles this long [s]: neither the
+// lattice nor the relaxed start is in equilibrium under gravity next to a boundary, and the
+// first steps' pressure rings through the tank for seconds (docs/validation.md, "Every
+// start at rest settles").
 constexpr double kAutoSettleSeconds = 0.1;
 // A fluid is at rest when none of it moves and at least this share of its free surface
 // faces up, within 45 degrees of -g (a dam break's column faces sideways too).
@@ -141,7 +145,6 @@ struct RelaxStats {
   int rounds = 0;
   double largest_before_percent = 0.0;
   double largest_after_percent = 0.0;
-  double settled_seconds = 0.0;  // the automatic settle that followed (kAutoSettleSeconds), or 0
 };
 
 // WCSPH's acoustic limit (Monaghan 1992): dt <= kAcousticCfl h / (c + v_max).

@@ -92,6 +92,9 @@ class Simulation {
   double sound_speed() const { return sound_speed_; }
   // What the start's relaxation did (TimeSettings::relax_start; zero rounds: not needed or off).
   const RelaxStats& relax_stats() const { return relax_stats_; }
+  // Seconds settled before t = 0 (time.settle, or kAutoSettleSeconds where "auto" found
+  // the fluid at rest), 0 if none.
+  double settled_seconds() const { return settle_seconds_; }
 
   // Benchmark switch: the O(n m) neighbour search instead of the grid.
   void set_brute_force_neighbors(bool on) { brute_force_ = on; }
@@ -221,7 +224,7 @@ class Simulation {
   double sound_speed_ = 0;     // c of the artificial viscosity [m/s]
   double wcsph_speed_ = 0;     // sqrt(k / rho0), WCSPH's acoustic time step [m/s]
   long settle_steps_ = 0;      // steps taken by settle()
-  double settle_seconds_ = 0;  // settle()'s duration (time.settle or the automatic one)
+  double settle_seconds_ = 0;  // settle()'s duration (time.settle or the automatic one), 0: none
   RelaxStats relax_stats_;     // relax_start()'s rounds and compressions
   // Steps taken so far, settling included: which step a per-step value belongs to.
   long step_stamp() const { return step_ + settle_steps_; }
