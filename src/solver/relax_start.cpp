@@ -64,8 +64,8 @@ RelaxStats Simulation::relax_start() {
   return r;
 }
 
-// A relaxed start settles (kAutoSettleSeconds) only where the fluid is at rest: nothing
-// moves, gravity pulls, and at least kAtRestSurfaceShare of the free surface faces up (its
+// time.settle "auto" settles a start (kAutoSettleSeconds) only where the fluid is at rest:
+// nothing moves, gravity pulls, and at least kAtRestSurfaceShare of the free surface faces up (its
 // outward normal -sum_j grad W_ij within 45 degrees of -g). The free surface is the particles
 // below 90 % of rho0 with no boundary neighbour (a hole next to a boundary is not surface).
 // A dam break's column, whose side faces sideways, does not settle: it must fall at t = 0.
