@@ -305,7 +305,7 @@ void run_scene(const Scene& scene, const fs::path& dir, bool quiet, const FrameC
     const bool resumable = control.resume.has_value();  // the earlier run's checkpoints
     char where[160];
     std::snprintf(where, sizeof where, "while settling (%s%g s, run to its end), before t = 0",
-                  scene.time.auto_settle ? "automatic, as the fluid starts at rest: " : "time.settle = ", settled);
+                  settle_origin(scene.time), settled);
     const std::string how =
         resumable ? "its checkpoints are kept; resume with: sluice " + control.command + " --resume " + dir.string()
                   : "no frame and no checkpoint was written (checkpoints start at t = 0, after "

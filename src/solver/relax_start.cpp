@@ -44,9 +44,9 @@ RelaxStats Simulation::relax_start() {
   std::fill(boundary_.a.begin(), boundary_.a.end(), Vec2::Zero());
   const double dt = choose_time_step();  // any step: the move dt^2 a_p does not depend on it
   // The solve books the moving walls' work per particle (Eq. 24's boundary term times v_b,
-  // here 0), in the array advance() sizes for each step; without it the rotor on Wendland's
-  // C2, or any moving object next to a compressed start, wrote past its end.
-  if (has_moving_boundaries()) scratch_->work.assign(static_cast<size_t>(n), 0.0);
+  // here 0), as in a step; without it the rotor on Wendland's C2, or any moving object next
+  // to a compressed start, wrote past the array's end.
+  reset_boundary_work();
   while (r.rounds < kRelaxStartRounds && r.largest_after_percent > kRelaxStartPercent) {
     std::fill(fluid_.v.begin(), fluid_.v.end(), Vec2::Zero());
     StepStats st;

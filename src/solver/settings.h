@@ -136,6 +136,10 @@ constexpr int kRelaxStartRounds = 100;
 // first steps' pressure rings through the tank for seconds (docs/validation.md, "Every
 // start at rest settles").
 constexpr double kAutoSettleSeconds = 0.1;
+// How messages name a settle: its origin, followed by its seconds.
+inline const char* settle_origin(const TimeSettings& t) {
+  return t.auto_settle ? "automatic, as the fluid starts at rest: " : "time.settle = ";
+}
 // A fluid is at rest when none of it moves and at least this share of its free surface
 // faces up, within 45 degrees of -g (a dam break's column faces sideways too).
 constexpr double kAtRestSurfaceShare = 0.9;

@@ -82,8 +82,14 @@ void Simulation::settle(double duration) {
   recompute_density();
 }
 
-void Simulation::advance(double dt, StepStats& st, bool settling) {
+// The moving walls' work on each fluid particle, summed by the phases of one step (and by
+// the start relaxation's solve); energy.cpp reads it. Sized here, before any of them adds.
+void Simulation::reset_boundary_work() {
   if (has_moving_boundaries()) scratch_->work.assign(static_cast<size_t>(fluid_.size()), 0.0);
+}
+
+void Simulation::advance(double dt, StepStats& st, bool settling) {
+  reset_boundary_work();
   for (const Phase phase : kPhases) {
     if (phase == Phase::Boundary && (settling || !has_moving_boundaries())) continue;  // its time stays 0
     const Stopwatch t;

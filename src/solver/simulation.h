@@ -113,6 +113,7 @@ class Simulation {
   double choose_time_step() const;
   double hydrostatic_speed() const;                       // sqrt(|g| H), for choose_time_step
   void advance(double dt, StepStats& st, bool settling);  // one step of Algorithm 2 without time bookkeeping
+  void reset_boundary_work();                             // the moving walls' per-particle work, zeroed
   void run_phase(Phase phase, double dt, StepStats& st);  // one phase of it
   void settle(double duration);                           // TimeSettings::settle, before t = 0
   bool starts_at_rest() const;                            // still, its free surface facing up

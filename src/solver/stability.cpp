@@ -39,9 +39,8 @@ void Simulation::check_stability(const StepStats& st) const {
   auto fail = [&](const std::string& cause) {
     std::ostringstream os;
     if (st.step <= 0)  // settle() numbers its steps 0, -1, -2, ...
-      os << "unstable while settling ("
-         << (setup_.time.auto_settle ? "automatic, as the fluid starts at rest: " : "time.settle = ") << settle_seconds_
-         << " s) at its step " << 1 - st.step << ", " << st.time << " s into it: " << cause;
+      os << "unstable while settling (" << settle_origin(setup_.time) << settle_seconds_ << " s) at its step "
+         << 1 - st.step << ", " << st.time << " s into it: " << cause;
     else
       os << "unstable at step " << st.step << ", t = " << st.time << " s: " << cause;
     throw SimulationUnstable(os.str());
