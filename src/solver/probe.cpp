@@ -89,4 +89,6 @@ void SolverProbe::apply(const std::vector<double>& p, const std::vector<double>&
       apb[b] = s.sample_operator_of(b, t) + (stabilised ? s.sample_stabilisation_of(b, t) : 0.0);
 }
 
+const std::vector<Vec2>& SolverProbe::pressure_acceleration() const { return sim_.scratch_->a_p; }
+
 }  // namespace sluice

@@ -54,6 +54,9 @@ class SolverProbe {
   // the boundary part of Eq. 24, at the current pressures and the last step's pairs [N/m].
   // Mirroring's p_b = p_i is not applied (c gamma3 covers it). After a step: its force.
   Vec2 boundary_pressure_force() const;
+  // Each fluid particle's pressure acceleration (Eq. 24) at the pressures of the last
+  // apply() or solve.
+  const std::vector<Vec2>& pressure_acceleration() const;
 
   // Off: the boundary velocity is left out of the IISPH source term (Eq. 16/19), as in
   // the thesis' own code; only to show that the term matters.
