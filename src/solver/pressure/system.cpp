@@ -47,8 +47,11 @@ void PressureSystem::smooth_near_walls(int iterations) {
 }
 
 void PressureSystem::save_previous_iterate() {
-  sim_.scratch_->p_prev = sim_.fluid_.p;
-  sim_.scratch_->pb_prev = sim_.boundary_.p;
+  Simulation& s = sim_;
+  s.scratch_->p_prev.resize(s.fluid_.p.size());
+  s.scratch_->pb_prev.resize(s.boundary_.p.size());
+  parallel_for(s.fluid_.size(), [&](Index i) { s.scratch_->p_prev[i] = s.fluid_.p[i]; });
+  parallel_for(s.boundary_.size(), [&](Index b) { s.scratch_->pb_prev[b] = s.boundary_.p[b]; });
 }
 
 void PressureSystem::restore_measured_iterate() {

@@ -32,8 +32,10 @@ class PressureSystem {
 
   // Chebyshev's semi-iteration (pressure_kernels.h, chebyshev_extrapolate).
   void set_extrapolation_weight(double w) { terms_.chebyshev = w; }  // 0: plain relaxed Jacobi
-  void save_previous_iterate();                                      // p_prev, pb_prev := p, p_b
-  // Puts back the iterate the last sweep measured (p_prev, pb_prev) with its p / rho^2.
+  // p_prev, pb_prev := p, p_b: Chebyshev's previous iterate, or the multilevel solve's
+  // iterate before a coarse correction.
+  void save_previous_iterate();
+  // Puts back the iterate saved last (p_prev, pb_prev) with its p / rho^2.
   void restore_measured_iterate();
 
   // The multilevel scheme's coarse level (coarse_level.h): aggregates of the unknowns
