@@ -31,6 +31,17 @@ namespace sluice {
 namespace {
 
 const std::string kTank = std::string(SLUICE_SOURCE_DIR) + "/scenes/hydrostatic.json";
+constexpr double kTankWidth = 0.4;
+
+// The columns the tank's measures read: more than 3 h from its side walls.
+bool away_from_side_walls(const Vec2& x, double h) { return x.x() >= 3 * h && x.x() <= kTankWidth - 3 * h; }
+
+// The fluid's highest particle [m].
+double top_of(const FluidParticles& f) {
+  double top = -std::numeric_limits<double>::infinity();
+  for (const Vec2& x : f.x) top = std::max(top, x.y());
+  return top;
+}
 
 struct FloorResult {
   double load_ratio = 0;           // walls' vertical pressure force / the fluid's weight, averaged
@@ -49,11 +60,10 @@ struct FloorResult {
 FloorResult measure_floor(const std::vector<std::string>& set) {
   const Scene scene = load_scene(kTank, set);
   const double h = scene.spacing, rho0 = scene.solver.rest_density, g = scene.solver.gravity.norm();
-  const double width = 0.4, from = scene.time.duration - 0.5;
+  const double from = scene.time.duration - 0.5;
   double load = 0, sample_p = 0, sample_d = 0, iterations = 0;
   std::vector<double> row_p(4, 0.0), row_d(4, 0.0);
   long steps = 0, measured = 0;
-  const auto inside = [&](const Vec2& x) { return x.x() >= 3 * h && x.x() <= width - 3 * h; };
   const auto observe = [&](Simulation& sim, const StepStats& st) {
     ++steps;
     iterations += st.iterations;
@@ -62,24 +72,22 @@ FloorResult measure_floor(const std::vector<std::string>& set) {
     const double weight = sim.fluid_mass() * static_cast<double>(sim.fluid().size()) * g;
     load += SolverProbe(sim).boundary_pressure_force().y() / weight;
     const FluidParticles& f = sim.fluid();
-    double top = -std::numeric_limits<double>::infinity();
-    for (const Vec2& x : f.x) top = std::max(top, x.y());
-    const double surface = top + 0.5 * h;  // as in run_hydrostatic
+    const double surface = top_of(f) + 0.5 * h;  // as in run_hydrostatic
     for (Index i = 0; i < f.size(); ++i) {
       const Vec2 x = f.x[i];
       const auto row = static_cast<std::size_t>(std::max(0.0, x.y() / h));
-      if (!inside(x) || row >= row_p.size()) continue;
+      if (!away_from_side_walls(x, h) || row >= row_p.size()) continue;
       row_p[row] += f.p[i];
       row_d[row] += surface - x.y();
     }
     const BoundaryParticles& b = sim.boundary();
     for (Index k = 0; k < b.size(); ++k)
-      if (inside(b.x[k]) && b.x[k].y() < 0 && b.x[k].y() > -h) {
+      if (away_from_side_walls(b.x[k], h) && b.x[k].y() < 0 && b.x[k].y() > -h) {
         sample_p += b.p[k];
         sample_d += surface - b.x[k].y();
       }
   };
-  const analysis::HydrostaticResult hr = analysis::run_hydrostatic(scene, width, from, false, observe);
+  const analysis::HydrostaticResult hr = analysis::run_hydrostatic(scene, kTankWidth, from, false, observe);
   const double rho_g = rho0 * g;
   FloorResult r;
   r.load_ratio = load / static_cast<double>(measured);
@@ -297,9 +305,7 @@ std::vector<double> linear_field_balance(const std::vector<std::string>& set) {
   const double h = scene.spacing, rho0 = scene.solver.rest_density, g = scene.solver.gravity.norm();
   const FluidParticles& f = sim.fluid();
   const BoundaryParticles& b = sim.boundary();
-  double top = -std::numeric_limits<double>::infinity();
-  for (const Vec2& x : f.x) top = std::max(top, x.y());
-  const double surface = top + 0.5 * h;
+  const double top = top_of(f), surface = top + 0.5 * h;
   std::vector<double> p(static_cast<std::size_t>(f.size())), pb(static_cast<std::size_t>(b.size()));
   for (Index i = 0; i < f.size(); ++i) p[i] = rho0 * g * (surface - f.x[i].y());
   for (Index k = 0; k < b.size(); ++k) pb[k] = rho0 * g * (surface - b.x[k].y());
@@ -310,7 +316,7 @@ std::vector<double> linear_field_balance(const std::vector<std::string>& set) {
   std::vector<double> sum(rows, 0.0), count(rows, 0.0);
   for (Index i = 0; i < f.size(); ++i) {
     const Vec2 x = f.x[i];
-    if (x.x() < 3 * h || x.x() > 0.4 - 3 * h) continue;
+    if (!away_from_side_walls(x, h)) continue;
     const auto row = static_cast<std::size_t>(x.y() / h);
     sum[row] += a[i].y() / g;
     count[row] += 1;

@@ -52,7 +52,7 @@ class ChebyshevSolver final : public PressureSolverMethod {
     } while ((avg > limits.tolerance_percent || l < limits.min_iterations) && l < limits.max_iterations);
     // The last extrapolation is unchecked (Eq. 23 was measured at p_k, before it) and can
     // overshoot where the clamp is active; keep the iterate that was measured.
-    if (w > 0.0) system.restore_measured_iterate();
+    if (w > 0.0) system.restore_saved_iterate();
     return {l, avg};
   }
 };

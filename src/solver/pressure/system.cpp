@@ -54,7 +54,7 @@ void PressureSystem::save_previous_iterate() {
   parallel_for(s.boundary_.size(), [&](Index b) { s.scratch_->pb_prev[b] = s.boundary_.p[b]; });
 }
 
-void PressureSystem::restore_measured_iterate() {
+void PressureSystem::restore_saved_iterate() {
   Simulation& s = sim_;
   s.fluid_.p = s.scratch_->p_prev;
   s.boundary_.p = s.scratch_->pb_prev;

@@ -36,7 +36,7 @@ class PressureSystem {
   // iterate before a coarse correction.
   void save_previous_iterate();
   // Puts back the iterate saved last (p_prev, pb_prev) with its p / rho^2.
-  void restore_measured_iterate();
+  void restore_saved_iterate();
 
   // The multilevel scheme's coarse level (coarse_level.h): aggregates of the unknowns
   // with p > 0 now and the Galerkin operator over them; then a correction from the
