@@ -183,6 +183,50 @@ void Simulation::assemble_coarse_operator(const PressureTerms& t, CoarseLevel& c
   coef.resize(static_cast<size_t>(n));
   parallel_for(n, [&](Index f) { coef[f] = -m / (fluid_.rho[f] * fluid_.rho[f]); });
 
+  // The stabilisation's terms (pressure_kernels.h), which the sweeps invert with A: for a
+  // band row i, d/dp_J of kappa a_ii rho_i^2 (q_i - q_bar_i), q = p / rho^2 and q_bar_i the
+  // neighbours' mean plus a_i . x_bar_i / rho_i; for a sample row b, of kappa_s a_bb rho0^2
+  // (q_b - mean_f (q_f - a_f . (x_b - x_f) / rho_f)). The q parts are entries of their own
+  // (put); the a parts enter through g_iJ as h does. Left out, a correction overshot where
+  // A + kappa S is stiffer (docs/performance.md, "The stabilisation in the coarse operator").
+  const bool stabilised = t.stabilisation > 0.0;
+  const double rho0 = settings_.rest_density, inv_rho0_2 = 1.0 / (rho0 * rho0);
+  auto put = [&](double* table, Index row, Index col, double v) {
+    const int dx = cl.cell_x[col] - cl.cell_x[row] + kReach, dy = cl.cell_y[col] - cl.cell_y[row] + kReach;
+    SLUICE_ASSERT(dx >= 0 && dx < kSide && dy >= 0 && dy < kSide, "coupled aggregates lie within kReach cells");
+    table[row * kSlots + dy * kSide + dx] += v;
+  };
+  // Particle i's share: its own row's term if it is in the band, and what its q and a_i
+  // give the rows of its samples.
+  auto add_stabilisation = [&](Index i, AggregateTerms& at, double* table) {
+    const Index own = agg[i];
+    const double rho_i = fluid_.rho[i];
+    const Index count = ff_.count(i) + (t.boundary_field ? fb_.count(i) : 0);
+    if (own >= 0 && scratch_->stab_on[i] && count > 0) {
+      const double k = t.stabilisation * scratch_->a_ii[i];
+      const double k_mean = k * rho_i * rho_i / static_cast<double>(count);
+      put(table, own, own, k);
+      for (Index e = ff_.offset[i]; e < ff_.offset[i + 1]; ++e) {
+        const Index f = ff_.j[e];
+        if (agg[f] >= 0) put(table, own, agg[f], -k_mean / (fluid_.rho[f] * fluid_.rho[f]));
+      }
+      if (samples)
+        for (Index e = fb_.offset[i]; e < fb_.offset[i + 1]; ++e)
+          if (agg[n + fb_.j[e]] >= 0) put(table, own, agg[n + fb_.j[e]], -k_mean * inv_rho0_2);
+      at.h[0] += (-k * rho_i) * scratch_->stab_offset[i];
+    }
+    if (!samples) return;
+    for (Index e = fb_.offset[i]; e < fb_.offset[i + 1]; ++e) {
+      const Index b = fb_.j[e], row = agg[n + b];
+      if (row < 0 || scratch_->bnd_aii[b] == 0.0) continue;
+      const double kb = kSampleStabilisation * t.stabilisation * scratch_->bnd_aii[b];
+      const double ks = kb * rho0 * rho0 / static_cast<double>(bf_.count(b));
+      if (bf_.j[bf_.offset[b]] == i) put(table, row, row, kb);  // once per sample, from its first neighbour
+      if (own >= 0) put(table, row, own, -ks / (rho_i * rho_i));
+      at.add(row, Vec2::Zero(), (ks / rho_i) * (boundary_.x[b] - fluid_.x[i]));
+    }
+  };
+
 #pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMin)
   for (Index c = 0; c < chunks; ++c) {
     double* table = cl.partial.data() + c * na * kSlots;
@@ -208,6 +252,7 @@ void Simulation::assemble_coarse_operator(const PressureTerms& t, CoarseLevel& c
         at.g[0] += -inv2 * (m * sum + t.c_gamma3 * scratch_->grad_b[i]);
         at.h[0] += dt * (m * sum + t.gamma2 * scratch_->grad_b[i]);
       }
+      if (stabilised) add_stabilisation(i, at, table);
       if (at.size == 1) {  // inside a cell
         table[at.id[0] * kSlots + kSlots / 2] += at.h[0].dot(at.g[0]);
         continue;
@@ -272,10 +317,12 @@ void Simulation::assemble_coarse_operator(const PressureTerms& t, CoarseLevel& c
   });
 }
 
-// The coarse level of this solve: aggregates, P^T A P, and its symmetric part. A_c is
-// symmetric up to the rows' densities (A = D G with D = -dt rho_i^2 G^T for the fluid's
-// rows), so -(A_c + A_c^T) / 2 is positive definite and its LDL^T factors, with one step
-// of refinement against A_c itself, solve A_c e = r (coarse_correction).
+// The coarse level of this solve: aggregates, P^T A P, and its LU factors. A_c is not
+// symmetric (the rows' densities, A = D G with D = -dt rho_i^2 G^T for the fluid's rows,
+// and the stabilisation's terms): the LDL^T of its symmetric part with one refinement,
+// used before the stabilisation joined A_c, left the corrections wrong enough that the
+// cubic spline's deep column went unstable at kappa = 2 (docs/performance.md, "The
+// stabilisation in the coarse operator").
 void Simulation::build_coarse_level(const PressureTerms& t) {
   if (settings_.boundary_pressure == BoundaryPressure::Extrapolation)
     throw std::invalid_argument(
@@ -285,9 +332,7 @@ void Simulation::build_coarse_level(const PressureTerms& t) {
   CoarseLevel& cl = *scratch_->coarse;
   aggregate_unknowns(cl);
   assemble_coarse_operator(t, cl);
-  // The row-major A_c's storage is A_c^T's column-major one.
-  const CoarseLevel::Matrix a_t = cl.a_c.transpose(), a = cl.a_c;
-  cl.symmetric = -0.5 * (a_t + a);
+  cl.a_col = cl.a_c;
   cl.factorised = false;
   cl.factor_pending = cl.aggregates > 0;  // factorised by the first correction, beside its residual
 }
@@ -295,7 +340,7 @@ void Simulation::build_coarse_level(const PressureTerms& t) {
 // One coarse correction: r = s - A x (Eq. 19, 20 and the samples' rows, from the current
 // pressures), then x_u += scale (A_c^-1 P^T r)_{I(u)} on the aggregated unknowns, clamped at zero
 // as in Eq. 21. Costs one application of A. The first correction of a solve also
-// factorises A_c's symmetric part: Eigen's factorisation is serial, so one thread takes it
+// factorises A_c: Eigen's sparse LU is serial, so one thread takes it
 // while the others start on the residual's two passes, and joins them when it is done
 // (neither depends on the other; each value is computed the same way by any thread).
 // Returns false (and changes nothing) when the coarse operator could not be factorised.
@@ -305,9 +350,7 @@ bool Simulation::coarse_correction(const PressureTerms& t, double scale) {
   const Index n = fluid_.size(), nb = boundary_.size();
   const bool samples = settings_.boundary_pressure == BoundaryPressure::Solved;
   update_boundary_pressure();
-  // As compute_pressure_acceleration, with the stabilisation's means for the residual. (A_c
-  // is P^T A P without the stabilisation: with its terms the 20k dam break went unstable;
-  // docs/performance.md, "The stabilisation as an option".)
+  // As compute_pressure_acceleration, with the stabilisation's means for the residual.
   PressureTerms t_acc = pressure_terms(0.0);
   t_acc.stabilisation = t.stabilisation;
   std::vector<Vec2>& acc = scratch_->a_p;
@@ -323,8 +366,8 @@ bool Simulation::coarse_correction(const PressureTerms& t, double scale) {
     if (factorise) {
 #pragma omp task
       {
-        cl.ldlt.compute(cl.symmetric);
-        cl.factorised = cl.ldlt.info() == Eigen::Success;
+        cl.lu.compute(cl.a_col);
+        cl.factorised = cl.lu.info() == Eigen::Success;
       }
     }
 #pragma omp taskloop grainsize(kResidualGrain)
@@ -342,8 +385,7 @@ bool Simulation::coarse_correction(const PressureTerms& t, double scale) {
       if (cl.aggregate[n + b] >= 0)
         cl.rc[cl.aggregate[n + b]] += scratch_->bnd_s[b] - sample_operator_of(b, t) -
                                       (t.stabilisation > 0.0 ? sample_stabilisation_of(b, t) : 0.0);
-  cl.ec = -cl.ldlt.solve(cl.rc);
-  cl.ec -= cl.ldlt.solve(Eigen::VectorXd(cl.rc - cl.a_c * cl.ec));  // one refinement: A_c is not quite symmetric
+  cl.ec = cl.lu.solve(cl.rc);
   if (scale != 1.0) cl.ec *= scale;
   const double inv_rho0_2 = 1.0 / (settings_.rest_density * settings_.rest_density);
   parallel_for(n, [&](Index i) {

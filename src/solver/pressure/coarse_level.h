@@ -4,7 +4,7 @@
 // the Galerkin operator A_c = P^T A P of the PPE (Eq. 20 and the samples' rows) over them,
 // factorised once per solve (Simulation::build_coarse_level, coarse_level.cpp).
 #include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
 #include <cstdint>
 #include <vector>
 
@@ -19,10 +19,10 @@ struct CoarseLevel {
   // one that the first sweep left clamped at p = 0 (it stays out for the solve).
   std::vector<Index> aggregate;
   Index aggregates = 0;
-  RowMatrix a_c;                       // assembled row by row
-  Matrix symmetric;                    // -(A_c + A_c^T) / 2
-  Eigen::SimplicialLDLT<Matrix> ldlt;  // its factors
-  bool factor_pending = false;         // built, not yet factorised (the solve's first correction does it)
+  RowMatrix a_c;  // assembled row by row
+  Matrix a_col;   // the same, column by column, for its factors
+  Eigen::SparseLU<Matrix, Eigen::COLAMDOrdering<int>> lu;
+  bool factor_pending = false;  // built, not yet factorised (the solve's first correction does it)
   bool factorised = false;
   std::vector<double> residual;  // s - A x of the fluid rows at a correction
   Eigen::VectorXd rc, ec;        // restricted residual, coarse correction
