@@ -317,12 +317,13 @@ void Simulation::assemble_coarse_operator(const PressureTerms& t, CoarseLevel& c
   });
 }
 
-// The coarse level of this solve: aggregates, P^T A P, and its LU factors. A_c is not
-// symmetric (the rows' densities, A = D G with D = -dt rho_i^2 G^T for the fluid's rows,
-// and the stabilisation's terms): the LDL^T of its symmetric part with one refinement,
-// used before the stabilisation joined A_c, left the corrections wrong enough that the
-// cubic spline's deep column went unstable at kappa = 2 (docs/performance.md, "The
-// stabilisation in the coarse operator").
+// The coarse level of this solve: aggregates, P^T A P, and its symmetric part. A_c is
+// symmetric up to the rows' densities (A = D G with D = -dt rho_i^2 G^T for the fluid's
+// rows) and the stabilisation's terms, so the LDL^T factors of -(A_c + A_c^T) / 2
+// precondition BiCGSTAB on A_c itself (coarse_correction). One step of refinement against
+// A_c, enough before the stabilisation joined A_c, left the cubic spline's deep column
+// unstable at kappa = 2; Eigen's SparseLU of A_c cost 15 ms a solve on the 130k dam break
+// (docs/performance.md, "The stabilisation in the coarse operator").
 void Simulation::build_coarse_level(const PressureTerms& t) {
   if (settings_.boundary_pressure == BoundaryPressure::Extrapolation)
     throw std::invalid_argument(
@@ -332,7 +333,9 @@ void Simulation::build_coarse_level(const PressureTerms& t) {
   CoarseLevel& cl = *scratch_->coarse;
   aggregate_unknowns(cl);
   assemble_coarse_operator(t, cl);
-  cl.a_col = cl.a_c;
+  // The row-major A_c's storage is A_c^T's column-major one.
+  const CoarseLevel::Matrix a_t = cl.a_c.transpose(), a = cl.a_c;
+  cl.symmetric = -0.5 * (a_t + a);
   cl.factorised = false;
   cl.factor_pending = cl.aggregates > 0;  // factorised by the first correction, beside its residual
 }
@@ -340,11 +343,14 @@ void Simulation::build_coarse_level(const PressureTerms& t) {
 // One coarse correction: r = s - A x (Eq. 19, 20 and the samples' rows, from the current
 // pressures), then x_u += scale (A_c^-1 P^T r)_{I(u)} on the aggregated unknowns, clamped at zero
 // as in Eq. 21. Costs one application of A. The first correction of a solve also
-// factorises A_c: Eigen's sparse LU is serial, so one thread takes it
+// factorises A_c's symmetric part: Eigen's factorisation is serial, so one thread takes it
 // while the others start on the residual's two passes, and joins them when it is done
 // (neither depends on the other; each value is computed the same way by any thread).
-// Returns false (and changes nothing) when the coarse operator could not be factorised.
+// Returns false (and changes nothing) when the coarse operator could not be factorised or
+// its solve did not converge.
 bool Simulation::coarse_correction(const PressureTerms& t, double scale) {
+  constexpr double kCoarseTolerance = 1e-6;
+  constexpr int kCoarseIterations = 50;
   CoarseLevel& cl = *scratch_->coarse;
   if (cl.aggregates == 0) return false;
   const Index n = fluid_.size(), nb = boundary_.size();
@@ -366,8 +372,8 @@ bool Simulation::coarse_correction(const PressureTerms& t, double scale) {
     if (factorise) {
 #pragma omp task
       {
-        cl.lu.compute(cl.a_col);
-        cl.factorised = cl.lu.info() == Eigen::Success;
+        cl.ldlt.compute(cl.symmetric);
+        cl.factorised = cl.ldlt.info() == Eigen::Success;
       }
     }
 #pragma omp taskloop grainsize(kResidualGrain)
@@ -385,7 +391,14 @@ bool Simulation::coarse_correction(const PressureTerms& t, double scale) {
       if (cl.aggregate[n + b] >= 0)
         cl.rc[cl.aggregate[n + b]] += scratch_->bnd_s[b] - sample_operator_of(b, t) -
                                       (t.stabilisation > 0.0 ? sample_stabilisation_of(b, t) : 0.0);
-  cl.ec = cl.lu.solve(cl.rc);
+  // A relative residual of 1e-6: 8.6 iterations on average in the 130k dam break's first
+  // 0.05 s, at most 11; the shipped tank and the deep columns read as with an exact LU.
+  cl.bicgstab.preconditioner().ldlt = &cl.ldlt;
+  cl.bicgstab.setTolerance(kCoarseTolerance);
+  cl.bicgstab.setMaxIterations(kCoarseIterations);
+  cl.bicgstab.compute(cl.a_c);
+  cl.ec = cl.bicgstab.solve(cl.rc);
+  if (cl.bicgstab.info() != Eigen::Success) return false;
   if (scale != 1.0) cl.ec *= scale;
   const double inv_rho0_2 = 1.0 / (settings_.rest_density * settings_.rest_density);
   parallel_for(n, [&](Index i) {

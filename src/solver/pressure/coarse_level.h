@@ -3,14 +3,38 @@
 // multilevel.cpp): the fluid's and the samples' pressures aggregated by square cells, and
 // the Galerkin operator A_c = P^T A P of the PPE (Eq. 20 and the samples' rows) over them,
 // factorised once per solve (Simulation::build_coarse_level, coarse_level.cpp).
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/Sparse>
-#include <Eigen/SparseLU>
+#include <Eigen/SparseCholesky>
 #include <cstdint>
 #include <vector>
 
 #include "core/types.h"
 
 namespace sluice {
+
+// The LDL^T factors of A_c's symmetric part, -(A_c + A_c^T) / 2, as BiCGSTAB's
+// preconditioner for A_c itself (the interface Eigen's iterative solvers call).
+struct SymmetricPartPreconditioner {
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>* ldlt = nullptr;
+  template <typename M>
+  SymmetricPartPreconditioner& analyzePattern(const M&) {
+    return *this;
+  }
+  template <typename M>
+  SymmetricPartPreconditioner& factorize(const M&) {
+    return *this;
+  }
+  template <typename M>
+  SymmetricPartPreconditioner& compute(const M&) {
+    return *this;
+  }
+  template <typename Rhs>
+  Eigen::VectorXd solve(const Rhs& b) const {
+    return -ldlt->solve(b);
+  }
+  Eigen::ComputationInfo info() const { return Eigen::Success; }
+};
 
 struct CoarseLevel {
   using Matrix = Eigen::SparseMatrix<double>;
@@ -19,9 +43,10 @@ struct CoarseLevel {
   // one that the first sweep left clamped at p = 0 (it stays out for the solve).
   std::vector<Index> aggregate;
   Index aggregates = 0;
-  RowMatrix a_c;  // assembled row by row
-  Matrix a_col;   // the same, column by column, for its factors
-  Eigen::SparseLU<Matrix, Eigen::COLAMDOrdering<int>> lu;
+  RowMatrix a_c;                                                     // assembled row by row
+  Matrix symmetric;                                                  // -(A_c + A_c^T) / 2
+  Eigen::SimplicialLDLT<Matrix> ldlt;                                // its factors
+  Eigen::BiCGSTAB<RowMatrix, SymmetricPartPreconditioner> bicgstab;  // A_c e = r
   bool factor_pending = false;  // built, not yet factorised (the solve's first correction does it)
   bool factorised = false;
   std::vector<double> residual;  // s - A x of the fluid rows at a correction
