@@ -349,7 +349,7 @@ TEST(Multilevel, ADivergingCorrectionIsTakenBack) {
 // band (a third of this narrow column): its rows kept a residual of one sign, -0.04 % on
 // average, which the compression-only error did not count (0.023 % on average), and the
 // column kept 0.04-0.10 J/m of kinetic energy from 0.15 s on. With the terms, and A_c
-// factorised whole: 0.0036 %, and the start's transient (0.039 J/m at step 9) is under
+// solved whole: 0.0036 %, and the start's transient (0.039 J/m at step 9) is under
 // 0.0031 J/m from 0.15 s on.
 TEST(Multilevel, DeepColumnOnWendlandComesToRest) {
   Simulation sim(load_scene(std::string(SLUICE_SOURCE_DIR) + "/scenes/hard/deep_column.json",
